@@ -1,0 +1,297 @@
+#include "analysis/deviation.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "analysis/confidence.h"
+#include "analysis/edf.h"
+#include "analysis/noise_id.h"
+#include "analysis/tau_grid.h"
+#include "common/errors.h"
+
+namespace imunoise::analysis {
+
+namespace {
+
+/// Neumaier (improved Kahan) accumulator: the running error term keeps the sum exact to
+/// about one rounding of the result however many blocks are added (theory.md §2 "Numerics").
+struct CompensatedSum {
+  double sum = 0.0;
+  double carry = 0.0;
+  void add(double v) {
+    const double t = sum + v;
+    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
+    sum = t;
+  }
+  double value() const { return sum + carry; }
+};
+
+/// Σ_{k<n} term(k): plain (vectorisable) sums over short blocks, blocks added with
+/// compensation. Error ≈ kBlock·ε relative instead of n·ε: full precision at 10^8 terms.
+template <class Term>
+double blocked_sum(std::int64_t n, Term&& term) {
+  constexpr std::int64_t kBlock = 2048;
+  CompensatedSum total;
+  for (std::int64_t start = 0; start < n; start += kBlock) {
+    const std::int64_t end = std::min(n, start + kBlock);
+    double block = 0.0;
+#pragma omp simd reduction(+ : block)
+    for (std::int64_t k = start; k < end; ++k) block += term(k);
+    total.add(block);
+  }
+  return total.value();
+}
+
+// Second difference x_{k+2m} − 2x_{k+m} + x_k (Allan) and third difference (Hadamard).
+inline double second_difference(const double* x, std::int64_t k, std::int64_t m) {
+  return x[k + 2 * m] - 2.0 * x[k + m] + x[k];
+}
+inline double third_difference(const double* x, std::int64_t k, std::int64_t m) {
+  return x[k + 3 * m] - 3.0 * x[k + 2 * m] + 3.0 * x[k + m] - x[k];
+}
+
+/// Σ_j (Σ_{k=j}^{j+m−1} d_k)², j = 0..n−1, d = second difference at stride m (MVAR, SP 1065).
+/// The inner sum w_j is a sliding window: w_{j+1} = w_j + third_difference(j), O(1) per j —
+/// the prefix-sum form of theory.md §2 without forming a prefix array whose magnitude would
+/// grow like M^{3/2} and cost digits. Four lanes start at exact window sums in four quarters
+/// of the range, which breaks the add-latency chain and bounds rounding drift to M/4 steps.
+double modified_sum(const double* x, std::int64_t n, std::int64_t m) {
+  constexpr int kLanes = 4;
+  auto window_at = [&](std::int64_t j) {
+    double w = 0.0;
+    for (std::int64_t k = j; k < j + m; ++k) w += second_difference(x, k, m);
+    return w;
+  };
+  const std::int64_t lane_length = n / kLanes;
+  CompensatedSum total;
+  double w[kLanes];
+  std::int64_t start[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    start[l] = l * lane_length;
+    w[l] = lane_length > 0 ? window_at(start[l]) : 0.0;
+  }
+  // Each lane visits windows start..start+lane_length−1; it advances only between them, so
+  // no third difference past the last valid window (j ≤ n−2) is ever formed.
+  constexpr std::int64_t kBlock = 2048;
+  const std::int64_t advances = std::max<std::int64_t>(lane_length - 1, 0);
+  for (std::int64_t i0 = 0; i0 < advances; i0 += kBlock) {
+    const std::int64_t i1 = std::min(advances, i0 + kBlock);
+    double acc[kLanes] = {0.0, 0.0, 0.0, 0.0};
+    for (std::int64_t i = i0; i < i1; ++i) {
+      for (int l = 0; l < kLanes; ++l) {
+        acc[l] += w[l] * w[l];
+        w[l] += third_difference(x, start[l] + i, m);
+      }
+    }
+    for (int l = 0; l < kLanes; ++l) total.add(acc[l]);
+  }
+  if (lane_length > 0) {
+    for (int l = 0; l < kLanes; ++l) total.add(w[l] * w[l]);
+  }
+  // Tail [kLanes·lane_length, n): continue from the last lane's final window.
+  const std::int64_t tail_start = kLanes * lane_length;
+  double tail_w = 0.0;
+  if (tail_start < n) {
+    tail_w = lane_length > 0 ? w[kLanes - 1] + third_difference(x, tail_start - 1, m) : window_at(0);
+  }
+  double tail = 0.0;
+  for (std::int64_t j = tail_start; j < n; ++j) {
+    tail += tail_w * tail_w;
+    if (j + 1 < n) tail_w += third_difference(x, j, m);
+  }
+  total.add(tail);
+  return total.value();
+}
+
+/// Σ_{i=1}^{M−2} (x*_{i−m} − 2x*_i + x*_{i+m})² over the doubly reflected extension
+/// x*_{−j} = 2x_0 − x_j, x*_{M−1+j} = 2x_{M−1} − x_{M−1−j} (SP 1065 eq. 25, 0-based).
+double total_sum(const double* x, std::int64_t M, std::int64_t m) {
+  auto ext = [&](std::int64_t i) {
+    if (i < 0) return 2.0 * x[0] - x[-i];
+    if (i > M - 1) return 2.0 * x[M - 1] - x[2 * (M - 1) - i];
+    return x[i];
+  };
+  auto edge_term = [&](std::int64_t i) {
+    const double d = ext(i - m) - 2.0 * ext(i) + ext(i + m);
+    return d * d;
+  };
+  // Interior where no reflection is needed: m ≤ i ≤ M−1−m.
+  const std::int64_t lo = std::max<std::int64_t>(1, m);
+  const std::int64_t hi = std::min<std::int64_t>(M - 2, M - 1 - m);
+  CompensatedSum total;
+  double edges = 0.0;
+  for (std::int64_t i = 1; i < std::min(lo, M - 1); ++i) edges += edge_term(i);
+  if (hi >= lo) {
+    total.add(blocked_sum(hi - lo + 1, [&](std::int64_t k) {
+      const std::int64_t i = lo + k;
+      const double d = x[i - m] - 2.0 * x[i] + x[i + m];
+      return d * d;
+    }));
+  }
+  for (std::int64_t i = std::max(lo, hi + 1); i <= M - 2; ++i) edges += edge_term(i);
+  total.add(edges);
+  return total.value();
+}
+
+}  // namespace
+
+std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s) {
+  std::vector<double> phase(rate.size() + 1);
+  CompensatedSum mean_sum;
+  for (double y : rate) mean_sum.add(y);
+  const double mean = rate.empty() ? 0.0 : mean_sum.value() / static_cast<double>(rate.size());
+  CompensatedSum running;
+  phase[0] = 0.0;
+  for (std::size_t k = 0; k < rate.size(); ++k) {
+    running.add(tau0_s * (rate[k] - mean));
+    phase[k + 1] = running.value();
+  }
+  return phase;
+}
+
+std::vector<double> detrended_phase(std::span<const double> phase) {
+  std::vector<double> out(phase.begin(), phase.end());
+  const std::size_t M = phase.size();
+  if (M < 2) {
+    std::fill(out.begin(), out.end(), 0.0);
+    return out;
+  }
+  const double x0 = phase[0];
+  const double slope = (phase[M - 1] - x0) / static_cast<double>(M - 1);
+  for (std::size_t k = 0; k < M; ++k) out[k] = (phase[k] - x0) - slope * static_cast<double>(k);
+  return out;
+}
+
+VarianceEstimate allan_family_variance(DeviationType type, std::span<const double> phase,
+                                       std::int64_t m, double tau0_s) {
+  const auto M = static_cast<std::int64_t>(phase.size());
+  IMUNOISE_CHECK(m >= 1, AnalysisError, "averaging factor must be >= 1, got " + std::to_string(m));
+  IMUNOISE_CHECK(tau0_s > 0.0 && std::isfinite(tau0_s), AnalysisError,
+                 "sample period tau0 must be positive and finite");
+  const std::int64_t n = estimator_term_count(type, M, m);
+  IMUNOISE_CHECK(n >= 1, AnalysisError,
+                 "too few samples for " + std::string(to_string(type)) + " at m = " +
+                     std::to_string(m) + ": " + std::to_string(M) + " phase samples give no term");
+  const double* x = phase.data();
+  const double tau = static_cast<double>(m) * tau0_s;
+  const double nn = static_cast<double>(n);
+  VarianceEstimate out;
+  out.n_terms = n;
+  switch (type) {
+    case DeviationType::adev: {  // SP 1065 eq. 7 on phase, stride m
+      const double s = blocked_sum(n, [&](std::int64_t j) {
+        const double d = second_difference(x, j * m, m);
+        return d * d;
+      });
+      out.variance = s / (2.0 * tau * tau * nn);
+      break;
+    }
+    case DeviationType::oadev: {  // theory.md §2 overlapping AVAR
+      const double s = blocked_sum(n, [&](std::int64_t k) {
+        const double d = second_difference(x, k, m);
+        return d * d;
+      });
+      out.variance = s / (2.0 * tau * tau * nn);
+      break;
+    }
+    case DeviationType::mdev:
+    case DeviationType::tdev: {  // theory.md §2 modified AVAR; TVAR = τ²/3 · MVAR
+      const double s = modified_sum(x, n, m);
+      const double mvar = s / (2.0 * static_cast<double>(m) * static_cast<double>(m) * tau * tau * nn);
+      out.variance = type == DeviationType::mdev ? mvar : tau * tau / 3.0 * mvar;
+      break;
+    }
+    case DeviationType::hdev: {  // non-overlapping Hadamard, stride m
+      const double s = blocked_sum(n, [&](std::int64_t j) {
+        const double d = third_difference(x, j * m, m);
+        return d * d;
+      });
+      out.variance = s / (6.0 * tau * tau * nn);
+      break;
+    }
+    case DeviationType::ohdev: {  // theory.md §2 overlapping Hadamard
+      const double s = blocked_sum(n, [&](std::int64_t k) {
+        const double d = third_difference(x, k, m);
+        return d * d;
+      });
+      out.variance = s / (6.0 * tau * tau * nn);
+      break;
+    }
+    case DeviationType::totdev: {  // theory.md §2 total variance (SP 1065 eq. 25)
+      out.variance = total_sum(x, M, m) / (2.0 * tau * tau * nn);
+      break;
+    }
+  }
+  return out;
+}
+
+DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
+                                 std::span<const std::int64_t> averaging_factors,
+                                 const DeviationOptions& options) {
+  DeviationCurve curve;
+  curve.type = options.type;
+  curve.tau0_s = tau0_s;
+  curve.n_phase = static_cast<std::int64_t>(phase.size());
+  curve.confidence = options.confidence;
+  IMUNOISE_CHECK(options.confidence > 0.0 && options.confidence < 1.0, InputError,
+                 "confidence must be in (0, 1), got " + std::to_string(options.confidence));
+  const std::int64_t max_m = max_averaging_factor(options.type, curve.n_phase);
+  for (std::int64_t m : averaging_factors) {
+    IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
+                   "too few samples for the requested tau: m = " + std::to_string(m) + " (" +
+                       std::string(to_string(options.type)) + " allows m <= " +
+                       std::to_string(max_m) + " on " + std::to_string(curve.n_phase) +
+                       " phase samples)");
+  }
+  curve.points.resize(averaging_factors.size());
+
+  auto compute_point = [&](std::size_t i) {
+    const std::int64_t m = averaging_factors[i];
+    const VarianceEstimate v = allan_family_variance(options.type, phase, m, tau0_s);
+    DeviationPoint& p = curve.points[i];
+    p.m = m;
+    p.tau_s = static_cast<double>(m) * tau0_s;
+    p.value = std::sqrt(std::max(v.variance, 0.0));
+    p.n_terms = v.n_terms;
+    // A constant signal has no noise type; white FM is the neutral choice for its EDF.
+    p.alpha = options.alpha ? *options.alpha
+                            : (v.variance > 0.0 ? noise_alpha_for(options.type, phase, m) : 0);
+    p.edf = edf_for(options.type, p.alpha, m, curve.n_phase);
+    const DeviationInterval ci = deviation_interval(p.value, p.edf, options.confidence);
+    p.ci_low = ci.low;
+    p.ci_high = ci.high;
+  };
+
+  // Every τ costs one O(M) pass, so τ values are independent work items for the threads;
+  // each point is written by exactly one thread, so results do not depend on the count.
+  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(averaging_factors.size())));
+  if (curve.n_phase < 50000) threads = 1;  // thread start-up would dominate
+  if (threads <= 1) {
+    for (std::size_t i = 0; i < averaging_factors.size(); ++i) compute_point(i);
+    return curve;
+  }
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    pool.emplace_back([&] {
+      for (std::size_t i = next++; i < averaging_factors.size() && !failed; i = next++) {
+        try {
+          compute_point(i);
+        } catch (...) {
+          if (!failed.exchange(true)) failure = std::current_exception();
+        }
+      }
+    });
+  }
+  for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+  return curve;
+}
+
+}  // namespace imunoise::analysis

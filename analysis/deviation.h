@@ -1,0 +1,75 @@
+/// @file
+/// @brief Allan-family deviations (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV) from phase
+/// (integrated) data, O(M) per averaging factor, with EDF-based confidence intervals.
+/// Estimator definitions: ../shared/docs/theory.md §2 (NIST SP 1065 eqs. as cited there).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "analysis/deviation_type.h"
+
+namespace imunoise::analysis {
+
+/// @name Input preparation
+/// @{
+/// Phase from rate samples y (e.g. rad/s): x_0 = 0, x_k = τ0·Σ_{i<k}(y_i − ȳ), with the mean
+/// removed first and a compensated running sum (theory.md §2 "Numerics"). Size n+1.
+std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s);
+
+/// Phase data with its mean slope removed: x_k − x_0 − k·(x_{M−1} − x_0)/(M−1). Every
+/// statistic here is invariant to that trend; removing it keeps digits on large biases.
+std::vector<double> detrended_phase(std::span<const double> phase);
+/// @}
+
+/// Variance estimate at one averaging factor, with the number of terms summed (Stable32 "#").
+struct VarianceEstimate {
+  double variance = 0.0;     ///< σ²(τ) in (phase unit / s)², i.e. rate unit squared
+  std::int64_t n_terms = 0;  ///< number of differences in the sum
+};
+
+/// One statistic at averaging factor m (τ = m·τ0) from M phase samples. Throws
+/// imunoise::AnalysisError when m < 1 or the record is too short for a single term.
+/// For TDEV the value is the time variance (phase unit²).
+VarianceEstimate allan_family_variance(DeviationType type, std::span<const double> phase,
+                                       std::int64_t m, double tau0_s);
+
+/// One point of a deviation curve.
+struct DeviationPoint {
+  std::int64_t m = 0;        ///< averaging factor
+  double tau_s = 0.0;        ///< τ = m·τ0 [s]
+  double value = 0.0;        ///< the deviation (not the variance), input unit (TDEV: phase unit)
+  std::int64_t n_terms = 0;  ///< number of terms in the estimator sum
+  int alpha = 0;             ///< power-law exponent of S_y(f) used for the EDF
+  double edf = 0.0;          ///< equivalent degrees of freedom
+  double ci_low = 0.0;       ///< lower confidence bound of the deviation
+  double ci_high = 0.0;      ///< upper confidence bound of the deviation
+};
+
+/// Options of compute_deviation().
+struct DeviationOptions {
+  DeviationType type = DeviationType::oadev;
+  double confidence = 0.683;        ///< two-sided confidence level of [ci_low, ci_high]
+  std::optional<int> alpha;         ///< force the noise type (else identified per τ, §3.4)
+  unsigned threads = 0;             ///< worker threads across τ (0 = all cores)
+};
+
+/// A deviation curve with confidence intervals.
+struct DeviationCurve {
+  DeviationType type = DeviationType::oadev;
+  double tau0_s = 0.0;
+  std::int64_t n_phase = 0;  ///< M, number of phase samples
+  double confidence = 0.683;
+  std::vector<DeviationPoint> points;
+};
+
+/// Computes TYPE at every averaging factor of AVERAGING_FACTORS (each must satisfy
+/// 1 ≤ m ≤ max_averaging_factor(type, M)), with EDF (Greenhall–Riley, TOTDEV per SP 1065)
+/// and chi-square intervals.
+DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
+                                 std::span<const std::int64_t> averaging_factors,
+                                 const DeviationOptions& options);
+
+}  // namespace imunoise::analysis

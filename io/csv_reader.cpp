@@ -1,0 +1,933 @@
+#include "io/csv_reader.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <system_error>
+
+#include "common/errors.h"
+
+namespace imunoise::io {
+
+namespace {
+
+constexpr std::size_t kBlockBytes = std::size_t{1} << 20;     // one read() call
+constexpr std::size_t kMaxLineBytes = std::size_t{16} << 20;  // beyond: not a numeric table
+constexpr std::size_t kSniffBytes = std::size_t{256} << 10;   // enough for the first lines
+constexpr std::size_t kMaxSniffBytes = std::size_t{8} << 20;  // long comment preambles
+constexpr std::size_t kSniffLines = 64;
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+std::string errno_text(int err) { return std::generic_category().message(err); }
+
+/// Printable, bounded rendering of file text for messages: binary garbage stays one line.
+std::string show(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+    }
+  }
+  if (text.size() > kMax) out += "...";
+  return out;
+}
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+/// Reads a file in large blocks and hands out lines as views into its buffer (valid until the
+/// next call). Strips "\n", "\r\n" and a UTF-8 BOM on line 1; a last line without a newline is
+/// still a line. Lines longer than kMaxLineBytes are an error, so memory stays bounded.
+class LineSource {
+ public:
+  explicit LineSource(const std::string& path) : path_(path) {
+    do {
+      fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    } while (fd_ < 0 && errno == EINTR);
+    if (fd_ < 0) throw InputError(located_message(path, 0, 0, "cannot open: " + errno_text(errno)));
+    struct stat st {};
+    if (::fstat(fd_, &st) == 0) {
+      if (S_ISDIR(st.st_mode)) {
+        ::close(fd_);
+        fd_ = -1;
+        throw InputError(located_message(path, 0, 0, "is a directory, not a data file"));
+      }
+      if (S_ISREG(st.st_mode)) size_hint_ = static_cast<std::size_t>(st.st_size);
+    }
+    buffer_.resize(kBlockBytes);
+  }
+  ~LineSource() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  LineSource(const LineSource&) = delete;
+  LineSource& operator=(const LineSource&) = delete;
+
+  std::size_t size_hint() const { return size_hint_; }
+  bool at_eof() const { return eof_; }
+
+  /// The unconsumed bytes, after reading until at least `bytes` are buffered or EOF.
+  std::string_view peek(std::size_t bytes) {
+    while (end_ - pos_ < bytes && !eof_) read_more();
+    return {buffer_.data() + pos_, end_ - pos_};
+  }
+
+  /// Next line, or false at end of file.
+  bool next(std::string_view& line) {
+    for (;;) {
+      const char* base = buffer_.data();
+      const void* nl = std::memchr(base + scan_, '\n', end_ - scan_);
+      if (nl != nullptr) {
+        const auto at = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
+        line = {base + pos_, at - pos_};
+        pos_ = scan_ = at + 1;
+        break;
+      }
+      scan_ = end_;  // no newline in what we have: do not scan it again
+      if (eof_) {
+        if (pos_ == end_) return false;
+        line = {base + pos_, end_ - pos_};
+        pos_ = scan_ = end_;
+        break;
+      }
+      read_more();
+    }
+    ++line_number_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line_number_ == 1 && line.substr(0, kUtf8Bom.size()) == kUtf8Bom) {
+      line.remove_prefix(kUtf8Bom.size());
+    }
+    return true;
+  }
+
+  std::int64_t line_number() const { return line_number_; }
+
+ private:
+  void read_more() {
+    if (pos_ > 0) {  // keep only the unconsumed tail (a partial line)
+      std::memmove(buffer_.data(), buffer_.data() + pos_, end_ - pos_);
+      end_ -= pos_;
+      scan_ -= pos_;
+      pos_ = 0;
+    }
+    if (end_ == buffer_.size()) {
+      if (buffer_.size() >= kMaxLineBytes) {
+        throw InputError(located_message(path_, line_number_ + 1, 0,
+                                         "line longer than 16 MiB: not a numeric text table"));
+      }
+      buffer_.resize(buffer_.size() * 2);
+    }
+    ssize_t got = 0;
+    do {
+      got = ::read(fd_, buffer_.data() + end_, buffer_.size() - end_);
+    } while (got < 0 && errno == EINTR);
+    if (got < 0) {
+      throw InputError(located_message(path_, line_number_ + 1, 0,
+                                       "cannot read: " + errno_text(errno)));
+    }
+    if (got == 0) {
+      eof_ = true;
+    } else {
+      end_ += static_cast<std::size_t>(got);
+    }
+  }
+
+  std::string path_;
+  int fd_ = -1;
+  std::size_t size_hint_ = 0;
+  std::vector<char> buffer_;
+  std::size_t pos_ = 0;   // start of the unconsumed bytes
+  std::size_t scan_ = 0;  // where the next newline search starts
+  std::size_t end_ = 0;   // end of the valid bytes
+  bool eof_ = false;
+  std::int64_t line_number_ = 0;
+};
+
+bool is_content(std::string_view line) {
+  for (char c : line) {
+    if (!is_blank(c)) return c != '#';
+  }
+  return false;
+}
+
+char delimiter_char(Delimiter d) {
+  switch (d) {
+    case Delimiter::kComma: return ',';
+    case Delimiter::kTab: return '\t';
+    case Delimiter::kSemicolon: return ';';
+    default: return ' ';
+  }
+}
+
+/// Calls on_field(index, begin, end) for each field of `line` (trimmed of blanks) and returns
+/// the field count. Whitespace mode: runs of blanks separate, leading/trailing ones are ignored.
+template <typename OnField>
+inline std::size_t for_each_field(std::string_view line, Delimiter delimiter, OnField&& on_field) {
+  const char* p = line.data();
+  const char* const end = p + line.size();
+  std::size_t index = 0;
+  if (delimiter == Delimiter::kWhitespace) {
+    for (;;) {
+      while (p != end && is_blank(*p)) ++p;
+      if (p == end) return index;
+      const char* b = p;
+      while (p != end && !is_blank(*p)) ++p;
+      on_field(index++, b, p);
+    }
+  }
+  const char sep = delimiter_char(delimiter);
+  for (;;) {
+    const char* d = static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
+    const char* fe = d != nullptr ? d : end;
+    const char* b = p;
+    while (b != fe && is_blank(*b)) ++b;
+    const char* e = fe;
+    while (e != b && is_blank(e[-1])) --e;
+    on_field(index++, b, e);
+    if (d == nullptr) return index;
+    p = d + 1;
+  }
+}
+
+std::vector<std::string_view> split_fields(std::string_view line, Delimiter delimiter) {
+  std::vector<std::string_view> out;
+  for_each_field(line, delimiter, [&](std::size_t, const char* b, const char* e) {
+    out.emplace_back(b, static_cast<std::size_t>(e - b));
+  });
+  return out;
+}
+
+/// Removes one pair of surrounding double quotes (some tools quote every field).
+inline void unquote(const char*& b, const char*& e) {
+  if (e - b >= 2 && *b == '"' && e[-1] == '"') {
+    ++b;
+    --e;
+  }
+}
+
+inline bool is_digit(char c) { return static_cast<unsigned char>(c - '0') < 10; }
+
+/// True when the 8 bytes (little-endian load) are all ASCII digits: every high nibble is 3,
+/// and adding 6 to every low nibble does not carry into the high nibble (low nibble ≤ 9).
+inline bool eight_digits(std::uint64_t chunk) {
+  constexpr std::uint64_t kHigh = 0xF0F0F0F0F0F0F0F0u;
+  constexpr std::uint64_t kThrees = 0x3030303030303030u;
+  return (chunk & kHigh) == kThrees && ((chunk + 0x0606060606060606u) & kHigh) == kThrees;
+}
+
+/// Value of 8 ASCII digits loaded little-endian (first digit in the lowest byte): merge
+/// neighbours into 2-, then 4-, then 8-digit lanes; no lane can carry into the next.
+inline std::uint64_t eight_digit_value(std::uint64_t chunk) {
+  std::uint64_t v = chunk - 0x3030303030303030u;
+  v = (v * 10 + (v >> 8)) & 0x00FF00FF00FF00FFu;
+  v = (v * 100 + (v >> 16)) & 0x0000FFFF0000FFFFu;
+  return (v * 10000 + (v >> 32)) & 0xFFFFFFFFu;
+}
+
+/// Accumulates a run of digits into w (wrapping past 19 digits; callers check the count).
+inline const char* scan_digits(const char* p, const char* e, std::uint64_t& w) {
+  while (e - p >= 8) {
+    std::uint64_t chunk;
+    std::memcpy(&chunk, p, 8);
+    if constexpr (std::endian::native != std::endian::little) break;
+    if (!eight_digits(chunk)) break;
+    w = w * 100000000u + eight_digit_value(chunk);
+    p += 8;
+  }
+  for (; p != e && is_digit(*p); ++p) w = w * 10 + static_cast<std::uint64_t>(*p - '0');
+  return p;
+}
+
+/// Fast path for the usual decimal tokens: a value w·10^q with integer w ≤ 2^53 and |q| ≤ 22
+/// is exactly w × 10^q or w / 10^−q, both exact operands, so one correctly rounded operation
+/// gives the correctly rounded result (Clinger, "How to Read Floating Point Numbers
+/// Accurately", PLDI 1990, §5). Returns false for anything else (more than 19 digits, large
+/// exponents, nan/inf, garbage); the caller then uses std::from_chars, which also decides what
+/// is malformed.
+inline bool parse_decimal_fast(const char* p, const char* e, double& out) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const bool negative = p != e && *p == '-';
+  if (negative) ++p;
+  std::uint64_t w = 0;
+  const char* int_begin = p;
+  p = scan_digits(p, e, w);
+  std::ptrdiff_t digits = p - int_begin;
+  int exp10 = 0;
+  if (p != e && *p == '.') {
+    const char* frac_begin = ++p;
+    p = scan_digits(p, e, w);
+    digits += p - frac_begin;
+    exp10 = -static_cast<int>(p - frac_begin);
+  }
+  if (digits == 0 || digits > 19) return false;
+  if (p != e && (*p == 'e' || *p == 'E')) {
+    ++p;
+    const bool exp_negative = p != e && *p == '-';
+    if (p != e && (*p == '-' || *p == '+')) ++p;
+    if (p == e || !is_digit(*p)) return false;
+    int x = 0;
+    for (; p != e && is_digit(*p); ++p) {
+      if (x < 100000) x = x * 10 + (*p - '0');  // beyond ±22 we fall back anyway
+    }
+    exp10 += exp_negative ? -x : x;
+  }
+  if (p != e || w > (std::uint64_t{1} << 53)) return false;
+  double v = static_cast<double>(w);
+  if (w != 0) {
+    if (exp10 < -22 || exp10 > 22) return false;
+    v = exp10 < 0 ? v / kPow10[-exp10] : v * kPow10[exp10];
+  }
+  out = negative ? -v : v;
+  return true;
+}
+
+/// Parses a whole token as a double. Accepts a leading '+', nan/inf spellings (reported as
+/// non-finite by the caller) and values beyond double range (→ ±inf or 0 like strtod).
+inline bool parse_double(const char* b, const char* e, double& out) {
+  unquote(b, e);
+  if (b != e && *b == '+') {  // from_chars rejects '+', but "+1.5" is a fine number
+    ++b;
+    if (b != e && (*b == '-' || *b == '+')) return false;
+  }
+  if (parse_decimal_fast(b, e, out)) return true;
+  const auto [p, ec] = std::from_chars(b, e, out);
+  if (p != e || b == e) return false;
+  if (ec == std::errc()) return true;
+  if (ec == std::errc::result_out_of_range) {
+    const std::string copy(b, e);  // rare path: let strtod pick ±HUGE_VAL or a denormal/0
+    out = std::strtod(copy.c_str(), nullptr);
+    return true;
+  }
+  return false;
+}
+
+/// Whole token as a 64-bit integer (exact time stamps in ns do not fit a double's 53 bits).
+inline bool parse_int64(const char* b, const char* e, std::int64_t& out) {
+  unquote(b, e);
+  if (b != e && *b == '+') ++b;
+  const auto [p, ec] = std::from_chars(b, e, out);
+  return ec == std::errc() && p == e && b != e;
+}
+
+bool is_number(std::string_view token) {
+  double v = 0.0;
+  return parse_double(token.data(), token.data() + token.size(), v);
+}
+
+Delimiter detect_delimiter(const std::vector<std::string_view>& lines) {
+  // Prefer a separator present with the same count on every line, then one merely present
+  // on every line (the row-count check reports the odd line); else blanks separate.
+  for (const bool need_same_count : {true, false}) {
+    for (const Delimiter d : {Delimiter::kTab, Delimiter::kSemicolon, Delimiter::kComma}) {
+      const char c = delimiter_char(d);
+      bool ok = !lines.empty();
+      std::ptrdiff_t first_count = -1;
+      for (std::string_view line : lines) {
+        const auto count = std::count(line.begin(), line.end(), c);
+        if (count == 0 || (need_same_count && first_count >= 0 && count != first_count)) {
+          ok = false;
+          break;
+        }
+        first_count = count;
+      }
+      if (ok) return d;
+    }
+  }
+  return Delimiter::kWhitespace;
+}
+
+std::string header_name(std::string_view field) {
+  const char* b = field.data();
+  const char* e = b + field.size();
+  unquote(b, e);
+  return std::string(b, e);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+std::string TableLayout::column_label(std::size_t index) const {
+  const std::string number = "column " + std::to_string(index + 1);
+  if (index < column_names.size() && !column_names[index].empty()) {
+    return "'" + show(column_names[index]) + "' (" + number + ")";
+  }
+  return number;
+}
+
+std::string TableLayout::describe_columns() const {
+  if (!has_header()) {
+    return column_count == 1 ? std::string("1 (no header row)")
+                             : "1.." + std::to_string(column_count) +
+                                   " (no header row; use 1-based indices)";
+  }
+  std::string out;
+  for (std::size_t i = 0; i < column_names.size(); ++i) {
+    if (i > 0) out += ", ";
+    out += column_names[i].empty() ? "(unnamed " + std::to_string(i + 1) + ")"
+                                   : show(column_names[i]);
+  }
+  return out;
+}
+
+void LineMap::add(std::int64_t row, std::int64_t line) {
+  if (breaks_.empty() || row != next_row_ || line != next_line_) breaks_.emplace_back(row, line);
+  next_row_ = row + 1;
+  next_line_ = line + 1;
+}
+
+std::int64_t LineMap::line_of(std::size_t row) const {
+  const auto r = static_cast<std::int64_t>(row);
+  auto it = std::upper_bound(breaks_.begin(), breaks_.end(), r,
+                             [](std::int64_t value, const auto& b) { return value < b.first; });
+  if (it == breaks_.begin()) return 0;
+  --it;
+  return it->second + (r - it->first);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct TableReader::Impl {
+  std::string path;
+  LineSource source;
+  TableLayout layout;
+  std::int64_t first_data_line = 0;  // first content line that is not the header
+  double mean_line_bytes = 0.0;
+  bool consumed = false;
+
+  explicit Impl(std::string p) : path(std::move(p)), source(path) {}
+
+  [[noreturn]] void fail(std::int64_t line, std::int64_t column, const std::string& what) const {
+    throw InputError(located_message(path, line, column, what));
+  }
+
+  void sniff(Delimiter requested) {
+    layout.path = path;
+    std::string_view head = source.peek(kSniffBytes);
+    if (head.empty()) fail(0, 0, "file is empty");
+    if (head.substr(0, 2) == "\xFF\xFE" || head.substr(0, 2) == "\xFE\xFF") {
+      fail(1, 1, "text is UTF-16 encoded; save it as UTF-8 or ASCII");
+    }
+    if (const auto nul = head.find('\0'); nul != std::string_view::npos) {
+      const std::string_view before = head.substr(0, nul);
+      const auto line = 1 + std::count(before.begin(), before.end(), '\n');
+      const auto line_start = before.rfind('\n');
+      const auto column = line_start == std::string_view::npos ? nul + 1 : nul - line_start;
+      fail(line, static_cast<std::int64_t>(column), "binary data (NUL byte): not a text table");
+    }
+
+    // The first content lines, with their line numbers (views into the peeked buffer).
+    std::vector<std::string_view> lines;
+    std::vector<std::int64_t> numbers;
+    for (std::size_t want = kSniffBytes;; want *= 2) {
+      head = source.peek(want);
+      lines.clear();
+      numbers.clear();
+      std::int64_t number = 0;
+      std::size_t pos = 0;
+      std::size_t bytes = 0;
+      while (pos < head.size() && lines.size() < kSniffLines) {
+        const auto nl = head.find('\n', pos);
+        if (nl == std::string_view::npos && !source.at_eof()) break;  // incomplete line
+        const auto stop = nl == std::string_view::npos ? head.size() : nl;
+        std::string_view line = head.substr(pos, stop - pos);
+        bytes += line.size() + 1;
+        pos = stop + 1;
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (number == 1 && line.substr(0, kUtf8Bom.size()) == kUtf8Bom) {
+          line.remove_prefix(kUtf8Bom.size());
+        }
+        if (is_content(line)) {
+          lines.push_back(line);
+          numbers.push_back(number);
+        }
+      }
+      mean_line_bytes = number > 0 ? static_cast<double>(bytes) / static_cast<double>(number) : 0;
+      if (lines.size() >= 2 || source.at_eof() || want >= kMaxSniffBytes) break;
+    }
+    if (lines.empty()) {
+      if (source.at_eof()) fail(0, 0, "no data rows (only comments and blank lines)");
+      fail(0, 0, "no data row in the first 8 MiB: not a numeric text table");
+    }
+
+    layout.delimiter = requested != Delimiter::kAuto ? requested : detect_delimiter(lines);
+    const std::vector<std::string_view> first = split_fields(lines[0], layout.delimiter);
+    // A header row holds no number at all; a row mixing words and numbers is a data row with
+    // a malformed token, which the read loop then reports precisely.
+    const bool header = std::none_of(first.begin(), first.end(), is_number);
+    layout.column_count = first.size();
+    if (header) {
+      layout.header_line = numbers[0];
+      for (std::string_view f : first) layout.column_names.push_back(header_name(f));
+      if (lines.size() >= 2) {
+        first_data_line = numbers[1];
+      } else if (source.at_eof()) {
+        fail(numbers[0], 0, "header row but no data rows");
+      }
+    } else {
+      first_data_line = numbers[0];
+    }
+  }
+};
+
+TableReader::TableReader(std::string path, Delimiter delimiter)
+    : impl_(std::make_unique<Impl>(std::move(path))) {
+  impl_->sniff(delimiter);
+}
+
+TableReader::~TableReader() = default;
+
+const TableLayout& TableReader::layout() const { return impl_->layout; }
+
+std::optional<std::size_t> TableReader::find_column(std::string_view selector) const {
+  const TableLayout& layout = impl_->layout;
+  for (std::size_t i = 0; i < layout.column_names.size(); ++i) {
+    if (layout.column_names[i] == selector) return i;
+  }
+  std::size_t index = 0;
+  const auto [p, ec] = std::from_chars(selector.data(), selector.data() + selector.size(), index);
+  if (ec == std::errc() && p == selector.data() + selector.size() && index >= 1 &&
+      index <= layout.column_count) {
+    return index - 1;
+  }
+  return std::nullopt;
+}
+
+std::size_t TableReader::resolve_column(std::string_view selector) const {
+  if (const auto found = find_column(selector)) return *found;
+  const TableLayout& layout = impl_->layout;
+  const bool numeric = !selector.empty() && std::all_of(selector.begin(), selector.end(),
+                                                        [](char c) { return c >= '0' && c <= '9'; });
+  std::string what;
+  if (numeric) {
+    what = "column index " + show(selector) + " out of range: the file has " +
+           std::to_string(layout.column_count) + " column(s), indices start at 1";
+  } else {
+    what = "unknown column '" + show(selector) + "'";
+  }
+  what += " (available columns: " + layout.describe_columns() + ")";
+  impl_->fail(layout.header_line, 0, what);
+}
+
+TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_non_finite) {
+  Impl& im = *impl_;
+  if (im.consumed) throw std::logic_error("TableReader::read called twice");
+  im.consumed = true;
+  const TableLayout& layout = im.layout;
+  const std::size_t ncols = layout.column_count;
+  const Delimiter delimiter = layout.delimiter;
+
+  // slot_of[column] = output slot or -1; a column requested twice is parsed once.
+  std::vector<int> slot_of(ncols, -1);
+  std::vector<std::size_t> column_of_slot;
+  std::vector<unsigned char> relative;  // not vector<bool>: read per field, keep it plain
+  std::vector<std::size_t> output_slot(columns.size());
+  for (std::size_t r = 0; r < columns.size(); ++r) {
+    const ColumnRequest& req = columns[r];
+    if (req.index >= ncols) throw std::out_of_range("TableReader::read: column index");
+    int& slot = slot_of[req.index];
+    if (slot < 0) {
+      slot = static_cast<int>(column_of_slot.size());
+      column_of_slot.push_back(req.index);
+      relative.push_back(req.relative_to_first);
+    } else if (req.relative_to_first) {
+      relative[static_cast<std::size_t>(slot)] = 1;
+    }
+    output_slot[r] = static_cast<std::size_t>(slot);
+  }
+  const std::size_t nslots = column_of_slot.size();
+
+  std::vector<std::vector<double>> values(nslots);
+  if (im.source.size_hint() > 0 && im.mean_line_bytes > 0.0) {
+    const double estimate = static_cast<double>(im.source.size_hint()) / im.mean_line_bytes;
+    const auto rows = static_cast<std::size_t>(
+        std::min(estimate * 1.02 + 16.0, static_cast<double>(im.source.size_hint() / 2 + 16)));
+    for (auto& v : values) v.reserve(rows);
+  }
+
+  // Per-row scratch, sized once: no allocation inside the loop.
+  std::vector<double> row(nslots);
+  std::vector<std::int64_t> row_int(nslots);
+  std::vector<unsigned char> row_is_int(nslots);
+  std::vector<double> first_double(nslots, 0.0);
+  std::vector<std::int64_t> first_int(nslots, 0);
+  std::vector<unsigned char> first_is_int(nslots, 0);
+
+  TableData data;
+  std::int64_t kept = 0;
+  const std::string count_origin =
+      layout.has_header() ? "as in the header on line " + std::to_string(layout.header_line)
+                          : "as in the first data row on line " + std::to_string(im.first_data_line);
+
+  std::string_view line;
+  while (im.source.next(line)) {
+    const std::int64_t line_no = im.source.line_number();
+    if (!is_content(line) || line_no == layout.header_line) continue;
+
+    std::int64_t non_finite = 0;
+    const char* extra_field = nullptr;
+    const std::size_t count =
+        for_each_field(line, delimiter, [&](std::size_t j, const char* b, const char* e) {
+          if (j >= ncols) {
+            if (j == ncols) extra_field = b;
+            return;
+          }
+          const int slot = slot_of[j];
+          if (slot < 0) return;  // not requested: counted, not converted
+          const auto s = static_cast<std::size_t>(slot);
+          const auto column = static_cast<std::int64_t>(b - line.data()) + 1;
+          if (b == e) im.fail(line_no, column, "empty field in " + layout.column_label(j));
+          row_is_int[s] = relative[s] && parse_int64(b, e, row_int[s]);
+          if (row_is_int[s]) return;
+          double v = 0.0;
+          if (!parse_double(b, e, v)) {
+            im.fail(line_no, column,
+                    "malformed number '" + show({b, static_cast<std::size_t>(e - b)}) + "' in " +
+                        layout.column_label(j));
+          }
+          if (!std::isfinite(v)) {
+            if (!drop_non_finite) {
+              im.fail(line_no, column,
+                      "non-finite value '" + show({b, static_cast<std::size_t>(e - b)}) + "' in " +
+                          layout.column_label(j) +
+                          " (set drop_non_finite / --drop-non-finite to drop such rows)");
+            }
+            ++non_finite;
+          }
+          row[s] = v;
+        });
+    if (count != ncols) {
+      const auto column = extra_field != nullptr
+                              ? static_cast<std::int64_t>(extra_field - line.data()) + 1
+                              : static_cast<std::int64_t>(line.size()) + 1;
+      im.fail(line_no, column,
+              "expected " + std::to_string(ncols) + " columns (" + count_origin + "), found " +
+                  std::to_string(count));
+    }
+    if (non_finite > 0) {
+      ++data.rows_dropped;
+      data.non_finite_dropped += non_finite;
+      continue;
+    }
+
+    for (std::size_t s = 0; s < nslots; ++s) {
+      if (relative[s]) {
+        if (kept == 0) {
+          first_is_int[s] = row_is_int[s];
+          first_int[s] = row_int[s];
+          first_double[s] = row_is_int[s] ? static_cast<double>(row_int[s]) : row[s];
+        }
+        std::int64_t diff = 0;
+        if (row_is_int[s] && first_is_int[s] &&
+            !__builtin_sub_overflow(row_int[s], first_int[s], &diff)) {
+          row[s] = static_cast<double>(diff);
+        } else {
+          const double v = row_is_int[s] ? static_cast<double>(row_int[s]) : row[s];
+          row[s] = v - first_double[s];
+        }
+      }
+      values[s].push_back(row[s]);
+    }
+    if (kept == 0) data.first_data_line = line_no;
+    data.lines.add(kept, line_no);
+    ++kept;
+  }
+
+  if (kept == 0) {
+    if (data.rows_dropped > 0) {
+      im.fail(0, 0, "no data rows left after dropping " + std::to_string(data.rows_dropped) +
+                        " row(s) holding NaN/Inf");
+    }
+    im.fail(layout.header_line, 0, "header row but no data rows");
+  }
+
+  data.columns.resize(columns.size());
+  data.first_values.resize(columns.size());
+  for (std::size_t r = 0; r < columns.size(); ++r) {
+    const std::size_t s = output_slot[r];
+    // Move each slot's vector to its last request; earlier duplicates get copies.
+    bool last_use = true;
+    for (std::size_t later = r + 1; later < columns.size(); ++later) {
+      last_use = last_use && output_slot[later] != s;
+    }
+    data.columns[r] = last_use ? std::move(values[s]) : values[s];
+    data.first_values[r] = relative[s] ? first_double[s] : data.columns[r].front();
+  }
+  return data;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+Series read_series(const std::string& path, const SeriesReadOptions& options) {
+  TableReader reader(path, options.delimiter);
+  const TableLayout& layout = reader.layout();
+  std::size_t column = 0;
+  if (!options.column.empty()) {
+    column = reader.resolve_column(options.column);
+  } else if (layout.column_count != 1) {
+    throw InputError(located_message(
+        path, layout.header_line, 0,
+        "the file has " + std::to_string(layout.column_count) +
+            " columns; choose one by name or 1-based index (--column); available columns: " +
+            layout.describe_columns()));
+  }
+  const ColumnRequest request{column, false};
+  TableData data = reader.read({&request, 1}, options.drop_non_finite);
+  Series series;
+  series.source_path = path;
+  series.column_name = layout.has_header() && !layout.column_names[column].empty()
+                           ? layout.column_names[column]
+                           : "column " + std::to_string(column + 1);
+  series.values = std::move(data.columns[0]);
+  series.non_finite_dropped = data.non_finite_dropped;
+  series.first_data_line = data.first_data_line;
+  return series;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+/// Units the project's own column names carry (what `imunoise simulate` writes).
+constexpr std::array<std::pair<std::string_view, TimeUnit>, 4> kTimeNames{{
+    {"time_s", TimeUnit::kSecond},
+    {"time_ms", TimeUnit::kMillisecond},
+    {"time_us", TimeUnit::kMicrosecond},
+    {"time_ns", TimeUnit::kNanosecond},
+}};
+constexpr std::array<std::pair<std::string_view, GyroUnit>, 5> kGyroSuffixes{{
+    {"rad_per_s", GyroUnit::kRadPerS},
+    {"deg_per_s", GyroUnit::kDegPerS},
+    {"deg_per_h", GyroUnit::kDegPerHour},
+    {"rad", GyroUnit::kRadIncrement},
+    {"deg", GyroUnit::kDegIncrement},
+}};
+constexpr std::array<std::pair<std::string_view, AccelUnit>, 4> kAccelSuffixes{{
+    {"m_per_s2", AccelUnit::kMPerS2},
+    {"g", AccelUnit::kG},
+    {"mg", AccelUnit::kMilliG},
+    {"m_per_s", AccelUnit::kMPerSIncrement},
+}};
+constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
+
+/// A sensor group as mapped: column indices (x, y, z order) and the unit.
+template <typename Unit>
+struct GroupMapping {
+  std::vector<std::size_t> columns;
+  Unit unit{};
+};
+
+std::optional<std::size_t> header_index(const TableLayout& layout, std::string_view name) {
+  for (std::size_t i = 0; i < layout.column_names.size(); ++i) {
+    if (layout.column_names[i] == name) return i;
+  }
+  return std::nullopt;
+}
+
+/// Finds "<prefix>_x_<suffix>", "_y_", "_z_" for the first suffix present on all three axes.
+template <typename Unit, std::size_t N>
+std::optional<GroupMapping<Unit>> find_named_group(
+    const TableLayout& layout, std::string_view prefix,
+    const std::array<std::pair<std::string_view, Unit>, N>& suffixes) {
+  for (const auto& [suffix, unit] : suffixes) {
+    GroupMapping<Unit> group{{}, unit};
+    for (std::string_view axis : kAxes) {
+      const std::string name =
+          std::string(prefix) + "_" + std::string(axis) + "_" + std::string(suffix);
+      if (const auto index = header_index(layout, name)) group.columns.push_back(*index);
+    }
+    if (group.columns.size() == kAxes.size()) return group;
+  }
+  return std::nullopt;
+}
+
+template <typename Unit, std::size_t N>
+std::optional<GroupMapping<Unit>> map_group(
+    const TableReader& reader, const std::string& path, std::string_view group,
+    const std::vector<std::string>& selectors, const std::optional<Unit>& unit,
+    Unit default_unit, const std::array<std::pair<std::string_view, Unit>, N>& suffixes) {
+  if (!selectors.empty()) {
+    if (selectors.size() > 3) {
+      throw InputError(located_message(path, 0, 0,
+                                       std::string(group) + " columns: give 1 to 3 (x, y, z), got " +
+                                           std::to_string(selectors.size())));
+    }
+    GroupMapping<Unit> mapping{{}, unit.value_or(default_unit)};
+    for (const std::string& s : selectors) mapping.columns.push_back(reader.resolve_column(s));
+    return mapping;
+  }
+  auto named = find_named_group(reader.layout(), group, suffixes);
+  if (named && unit && *unit != named->unit) {
+    throw InputError(located_message(
+        path, reader.layout().header_line, 0,
+        "column '" + reader.layout().column_names[named->columns[0]] + "' is in " +
+            std::string(to_string(named->unit)) + " but " + std::string(group) + " unit " +
+            std::string(to_string(*unit)) + " was given; map the columns explicitly"));
+  }
+  return named;
+}
+
+}  // namespace
+
+Recording read_recording(const std::string& path, const InputConfig& config) {
+  TableReader reader(path, config.delimiter.value_or(Delimiter::kAuto));
+  const TableLayout& layout = reader.layout();
+
+  if (config.rate_hz && !config.time_column.empty()) {
+    throw InputError(located_message(path, 0, 0, "give either a time column or a rate, not both"));
+  }
+  if (config.rate_hz && !(std::isfinite(*config.rate_hz) && *config.rate_hz > 0.0)) {
+    throw InputError(located_message(path, 0, 0, "the sample rate must be a positive number of Hz"));
+  }
+
+  // Time: a fixed rate, an explicit column, or a recognised name.
+  std::optional<std::size_t> time_column;
+  TimeUnit time_unit = config.time_unit.value_or(TimeUnit::kSecond);
+  if (!config.rate_hz) {
+    if (!config.time_column.empty()) {
+      time_column = reader.resolve_column(config.time_column);
+    } else {
+      for (const auto& [name, unit] : kTimeNames) {
+        if (const auto index = header_index(layout, name)) {
+          time_column = index;
+          break;
+        }
+      }
+    }
+    if (!time_column) {
+      throw InputError(located_message(
+          path, layout.header_line, 0,
+          "no time column: give --time-col COL [--time-unit s|ms|us|ns] or --rate HZ (or "
+          "time.column / rate_hz in the config); available columns: " +
+              layout.describe_columns()));
+    }
+    if (!config.time_unit && *time_column < layout.column_names.size()) {
+      for (const auto& [name, unit] : kTimeNames) {
+        if (layout.column_names[*time_column] == name) time_unit = unit;
+      }
+    }
+  }
+
+  const auto gyro = map_group(reader, path, "gyro", config.gyro_columns, config.gyro_unit,
+                              GyroUnit::kRadPerS, kGyroSuffixes);
+  const auto accel = map_group(reader, path, "accel", config.accel_columns, config.accel_unit,
+                               AccelUnit::kMPerS2, kAccelSuffixes);
+  std::vector<std::size_t> extra;
+  for (const ExtraColumn& e : config.extra_columns) extra.push_back(reader.resolve_column(e.column));
+  if (!gyro && !accel && extra.empty()) {
+    throw InputError(located_message(
+        path, layout.header_line, 0,
+        "no gyro or accel columns: map them with --gyro-cols / --accel-cols (or gyro.columns / "
+        "accel.columns in the config), or name them gyro_x_rad_per_s ... accel_z_m_per_s2; "
+        "available columns: " +
+            layout.describe_columns()));
+  }
+
+  // One request per column; the time column first, relative so ns stamps stay exact.
+  std::vector<ColumnRequest> requests;
+  if (time_column) requests.push_back({*time_column, true});
+  const std::size_t first_channel_request = requests.size();
+  if (gyro) {
+    for (std::size_t c : gyro->columns) requests.push_back({c, false});
+  }
+  if (accel) {
+    for (std::size_t c : accel->columns) requests.push_back({c, false});
+  }
+  for (std::size_t c : extra) requests.push_back({c, false});
+
+  TableData data = reader.read(requests, config.drop_non_finite.value_or(false));
+  const std::size_t n = data.columns.front().size();
+
+  Recording rec;
+  rec.source_path = path;
+  SamplingOptions options;
+  options.line_of_sample = [&data](std::size_t i) { return data.lines.line_of(i); };
+  TimingReport timing;
+  if (time_column) {
+    require_min_samples(path, n, 2, "a sample rate from time stamps");
+    const double factor = si_factor(time_unit);
+    rec.time_s = std::move(data.columns[0]);
+    for (double& t : rec.time_s) t *= factor;
+    rec.start_time_s = data.first_values[0] * factor;
+    timing = analyze_timing(rec.time_s, options);
+    if (!(timing.median_interval_s > 0.0)) {
+      throw InputError(located_message(path, data.first_data_line, 0,
+                                       "cannot estimate the sample rate: the time stamps never "
+                                       "increase"));
+    }
+    rec.sample_period_s = timing.median_interval_s;
+  } else {
+    rec.sample_period_s = 1.0 / *config.rate_hz;
+    timing = fixed_rate_timing(*config.rate_hz, static_cast<std::int64_t>(n));
+  }
+
+  std::size_t next = first_channel_request;
+  const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
+                               double factor, bool increments) {
+    const std::size_t column = requests[next].index;
+    Channel ch;
+    ch.name = std::move(name);
+    ch.unit = std::move(unit);
+    ch.source_unit = std::move(source_unit);
+    ch.source_column = layout.has_header() && !layout.column_names[column].empty()
+                           ? layout.column_names[column]
+                           : "column " + std::to_string(column + 1);
+    ch.from_increments = increments;
+    ch.values = std::move(data.columns[next]);
+    if (factor != 1.0) {
+      for (double& v : ch.values) v *= factor;
+    }
+    rec.channels.push_back(std::move(ch));
+    ++next;
+  };
+  if (gyro) {
+    const bool inc = is_increment(gyro->unit);
+    const double factor = si_factor(gyro->unit) / (inc ? rec.sample_period_s : 1.0);
+    for (std::size_t a = 0; a < gyro->columns.size(); ++a) {
+      add_channel("gyro_" + std::string(kAxes[a]), "rad/s", std::string(to_string(gyro->unit)),
+                  factor, inc);
+    }
+  }
+  if (accel) {
+    const bool inc = is_increment(accel->unit);
+    const double factor = si_factor(accel->unit) / (inc ? rec.sample_period_s : 1.0);
+    for (std::size_t a = 0; a < accel->columns.size(); ++a) {
+      add_channel("accel_" + std::string(kAxes[a]), "m/s^2", std::string(to_string(accel->unit)),
+                  factor, inc);
+    }
+  }
+  for (const ExtraColumn& e : config.extra_columns) add_channel(e.name, "", "", 1.0, false);
+
+  rec.report.samples = static_cast<std::int64_t>(n);
+  rec.report.timing = timing;
+  rec.report.non_finite_dropped = data.non_finite_dropped;
+  rec.report.rows_dropped = data.rows_dropped;
+  for (const Channel& ch : rec.channels) {
+    ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
+    if (ch.unit == "rad/s") samples.full_scale = config.gyro_full_scale_rad_per_s;
+    if (ch.unit == "m/s^2") samples.full_scale = config.accel_full_scale_m_per_s2;
+    rec.report.channels.push_back(analyze_channel(samples, options));
+  }
+  return rec;
+}
+
+}  // namespace imunoise::io

@@ -1,0 +1,123 @@
+/// @file
+/// @brief Streaming reader of numeric text tables (CSV, TSV, space- or semicolon-separated,
+/// one number per line), and the two entry points built on it: `read_series` (one column, for
+/// `imunoise allan`) and `read_recording` (an IMU recording in SI).
+///
+/// Accepted: an optional header row of column names (else columns are addressed by 1-based
+/// index), '#' comment lines and blank lines anywhere, CRLF, a UTF-8 BOM, no final newline.
+/// Every error is an InputError "FILE:LINE:COL: problem" showing the offending token.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "io/input_config.h"
+#include "io/recording.h"
+
+namespace imunoise::io {
+
+/// Shape of a table, found from its first lines.
+struct TableLayout {
+  std::string path;
+  Delimiter delimiter = Delimiter::kWhitespace;  ///< resolved, never kAuto
+  std::size_t column_count = 0;
+  std::vector<std::string> column_names;  ///< header names; empty when there is no header
+  std::int64_t header_line = 0;           ///< 1-based line of the header; 0 = none
+
+  bool has_header() const { return !column_names.empty(); }
+  /// "'gyro_x' (column 2)" with a header, "column 2" without (index is 0-based).
+  std::string column_label(std::size_t index) const;
+  /// "time_s, gyro_x, …" or "1..7 (no header row; use 1-based indices)".
+  std::string describe_columns() const;
+};
+
+/// Maps 0-based data-row indices to 1-based file lines without storing one entry per row:
+/// only rows after skipped lines (comments, blanks, dropped rows) get an entry.
+class LineMap {
+ public:
+  void add(std::int64_t row, std::int64_t line);  ///< call for rows in increasing order
+  std::int64_t line_of(std::size_t row) const;    ///< 0 if no row was added
+
+ private:
+  std::vector<std::pair<std::int64_t, std::int64_t>> breaks_;  // (row, line), line − row changes
+  std::int64_t next_row_ = 0;
+  std::int64_t next_line_ = 0;
+};
+
+/// One column to extract.
+struct ColumnRequest {
+  std::size_t index = 0;  ///< 0-based column index
+  /// Store value − first value (exact for integer tokens, e.g. ns stamps beyond 2^53).
+  bool relative_to_first = false;
+};
+
+/// Extracted columns, in request order.
+struct TableData {
+  std::vector<std::vector<double>> columns;
+  std::vector<double> first_values;    ///< first kept value of each column, as written
+  std::int64_t non_finite_dropped = 0;  ///< NaN/Inf values in dropped rows
+  std::int64_t rows_dropped = 0;        ///< rows dropped for NaN/Inf
+  std::int64_t first_data_line = 0;     ///< line of the first kept row
+  LineMap lines;                        ///< row → file line
+};
+
+/// Opens a table and finds its layout; read() then streams the rows (1 MiB blocks,
+/// std::from_chars, no per-line allocation). Only requested columns are converted, but every
+/// row's column count is checked.
+class TableReader {
+ public:
+  /// Throws InputError when the file cannot be opened, is empty, or has no data rows.
+  explicit TableReader(std::string path, Delimiter delimiter = Delimiter::kAuto);
+  ~TableReader();
+  TableReader(const TableReader&) = delete;
+  TableReader& operator=(const TableReader&) = delete;
+
+  const TableLayout& layout() const;
+
+  /// Column addressed by header name, else by 1-based index; nullopt if neither.
+  std::optional<std::size_t> find_column(std::string_view selector) const;
+  /// As find_column; throws InputError listing the available columns.
+  std::size_t resolve_column(std::string_view selector) const;
+
+  /// Reads all rows once. NaN/Inf: InputError, or with drop_non_finite the row is dropped and
+  /// counted. Throws InputError at the first malformed token or wrong column count.
+  TableData read(std::span<const ColumnRequest> columns, bool drop_non_finite);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// @name Single series (`imunoise allan FILE [--column NAME|INDEX]`)
+/// @{
+struct SeriesReadOptions {
+  std::string column;  ///< name, 1-based index, or empty = the only column
+  bool drop_non_finite = false;
+  Delimiter delimiter = Delimiter::kAuto;
+};
+
+struct Series {
+  std::string source_path;
+  std::string column_name;  ///< header name, or "column N" without a header
+  std::vector<double> values;
+  std::int64_t non_finite_dropped = 0;
+  std::int64_t first_data_line = 0;
+};
+
+/// Reads one numeric column. With several columns and no `column`, the InputError lists them.
+Series read_series(const std::string& path, const SeriesReadOptions& options);
+/// @}
+
+/// Reads an IMU recording per `config` (see InputConfig for the automatic mapping) and
+/// converts it to SI: rates in rad/s and m/s², increments divided by the sample period.
+/// Fills the sampling report; non-monotonic time stamps are reported, not fatal.
+Recording read_recording(const std::string& path, const InputConfig& config);
+
+}  // namespace imunoise::io

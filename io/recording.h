@@ -1,0 +1,68 @@
+/// @file
+/// @brief A recording in SI: nominal sample period, time stamps and named channels
+/// (`gyro_x` … `accel_z`, plus extra mapped columns) with the sampling report of the read.
+/// Readers: io/csv_reader.h (`read_recording`).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/errors.h"
+#include "io/sampling_report.h"
+
+namespace imunoise::io {
+
+/// One named channel, in SI.
+struct Channel {
+  std::string name;  ///< gyro_x, gyro_y, gyro_z, accel_x, accel_y, accel_z, or an extra name
+  std::string unit;  ///< SI unit of `values`: "rad/s", "m/s^2"; "" for extra (as-in-file) columns
+  std::vector<double> values;
+  std::string source_column;     ///< where it came from: header name or "column N"
+  std::string source_unit;       ///< unit in the file, e.g. "deg/h", or "rad" for angle increments
+  bool from_increments = false;  ///< the file held increments per sample, divided here by Δt
+};
+
+/// A stationary IMU recording, SI inside.
+struct Recording {
+  std::string source_path;
+  /// Nominal Δt = τ0 [s]: 1 / the given rate, else the median time-stamp interval. Increments
+  /// were divided by this value.
+  double sample_period_s = 0.0;
+  /// Time since the first sample [s] (so ns integer stamps keep full precision); empty when a
+  /// fixed rate was given instead of a time column.
+  std::vector<double> time_s;
+  double start_time_s = 0.0;  ///< first time stamp as written in the file, in s (0 if none)
+  std::vector<Channel> channels;
+  SamplingReport report;
+
+  std::size_t sample_count() const { return channels.empty() ? 0 : channels.front().values.size(); }
+
+  /// The channel called `name`, or nullptr.
+  const Channel* find_channel(std::string_view name) const {
+    for (const Channel& c : channels) {
+      if (c.name == name) return &c;
+    }
+    return nullptr;
+  }
+};
+
+/// Throws InputError "PATH: too few samples: N (need at least MIN for PURPOSE)" when
+/// `count < min_samples`.
+inline void require_min_samples(const std::string& path, std::size_t count, std::size_t min_samples,
+                                std::string_view purpose) {
+  if (count >= min_samples) return;
+  throw InputError(located_message(path, 0, 0,
+                                   "too few samples: " + std::to_string(count) +
+                                       " (need at least " + std::to_string(min_samples) + " for " +
+                                       std::string(purpose) + ")"));
+}
+
+/// require_min_samples over a recording's sample count.
+inline void require_min_samples(const Recording& recording, std::size_t min_samples,
+                                std::string_view purpose) {
+  require_min_samples(recording.source_path, recording.sample_count(), min_samples, purpose);
+}
+
+}  // namespace imunoise::io

@@ -1,0 +1,179 @@
+#include "analysis/deviation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "analysis/tau_grid.h"
+#include "common/errors.h"
+
+namespace imunoise::analysis {
+namespace {
+
+std::vector<double> white_noise(std::size_t n, double sigma, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, sigma);
+  std::vector<double> v(n);
+  for (double& x : v) x = normal(rng);
+  return v;
+}
+
+// Straightforward long-double evaluation of the SP 1065 sums, an independent reference for
+// the compensated, blocked and sliding-window kernels.
+long double reference_variance(DeviationType type, const std::vector<double>& x, std::int64_t m,
+                               double tau0) {
+  const auto M = static_cast<std::int64_t>(x.size());
+  const long double tau = static_cast<long double>(m) * tau0;
+  long double s = 0;
+  std::int64_t n = 0;
+  auto d2 = [&](std::int64_t k) {
+    return static_cast<long double>(x[k + 2 * m]) - 2.0L * x[k + m] + x[k];
+  };
+  auto d3 = [&](std::int64_t k) {
+    return static_cast<long double>(x[k + 3 * m]) - 3.0L * x[k + 2 * m] + 3.0L * x[k + m] - x[k];
+  };
+  switch (type) {
+    case DeviationType::oadev:
+      for (std::int64_t k = 0; k + 2 * m < M; ++k, ++n) s += d2(k) * d2(k);
+      return s / (2 * tau * tau * n);
+    case DeviationType::mdev:
+      for (std::int64_t j = 0; j + 3 * m - 1 < M; ++j, ++n) {
+        long double w = 0;
+        for (std::int64_t k = j; k < j + m; ++k) w += d2(k);
+        s += w * w;
+      }
+      return s / (2.0L * m * m * tau * tau * n);
+    case DeviationType::ohdev:
+      for (std::int64_t k = 0; k + 3 * m < M; ++k, ++n) s += d3(k) * d3(k);
+      return s / (6 * tau * tau * n);
+    default:
+      return -1;
+  }
+}
+
+TEST(Deviation, KernelsMatchLongDoubleReference) {
+  // Random-walk phase (white FM) of 20 000 points; compare at m that exercise the MDEV lanes
+  // (n divisible by 4 or not) and the tail.
+  const auto phase = phase_from_rate(white_noise(20000, 1.0, 7), 0.01);
+  for (auto type : {DeviationType::oadev, DeviationType::mdev, DeviationType::ohdev}) {
+    for (std::int64_t m : {1, 2, 3, 5, 17, 64, 333, 1000, 4000}) {
+      if (m > max_averaging_factor(type, static_cast<std::int64_t>(phase.size()))) continue;
+      const double got = allan_family_variance(type, phase, m, 0.01).variance;
+      const long double want = reference_variance(type, phase, m, 0.01);
+      EXPECT_NEAR(got / static_cast<double>(want), 1.0, 1e-12) << to_string(type) << " m=" << m;
+    }
+  }
+}
+
+TEST(Deviation, ModifiedKernelHandlesTinyRecords) {
+  // n = M − 3m + 1 from 1 to 7 terms: lanes empty, partial, and tail-only paths.
+  for (std::size_t M = 4; M < 12; ++M) {
+    const auto x = white_noise(M, 1.0, M);
+    const double got = allan_family_variance(DeviationType::mdev, x, 1, 1.0).variance;
+    EXPECT_NEAR(got / static_cast<double>(reference_variance(DeviationType::mdev, x, 1, 1.0)),
+                1.0, 1e-13)
+        << M;
+  }
+}
+
+TEST(Deviation, WhiteRateNoiseFollowsNSquaredOverTau) {
+  // White rate noise, per-sample σ_d = N/√τ0 → AVAR = N²/τ (theory.md §4.1). With 10^6
+  // samples, at m = 100 the OADEV EDF is ≈ 1.4·10^4 → relative σ² error ≈ √(2/ν) ≈ 1.2 %;
+  // 6 % is five standard deviations.
+  const double tau0 = 0.01, N = 2e-3;
+  const auto y = white_noise(1'000'000, N / std::sqrt(tau0), 11);
+  const auto phase = phase_from_rate(y, tau0);
+  for (std::int64_t m : {1, 10, 100}) {
+    const double tau = m * tau0;
+    const double avar = allan_family_variance(DeviationType::oadev, phase, m, tau0).variance;
+    EXPECT_NEAR(avar / (N * N / tau), 1.0, 0.06) << m;
+    // MVAR/AVAR → 1/2 for white FM at large m (theory.md §2) — checked at m = 100.
+  }
+  const double mvar = allan_family_variance(DeviationType::mdev, phase, 100, tau0).variance;
+  const double avar = allan_family_variance(DeviationType::oadev, phase, 100, tau0).variance;
+  EXPECT_NEAR(mvar / avar, 0.5, 0.05);
+  // HVAR = N²/τ as well (theory.md §4.1 table).
+  const double hvar = allan_family_variance(DeviationType::ohdev, phase, 100, tau0).variance;
+  EXPECT_NEAR(hvar / (N * N / 1.0), 1.0, 0.08);
+}
+
+TEST(Deviation, HugeConstantBiasDoesNotCostDigits) {
+  // 10^6 × the noise as a constant bias: the mean is removed before integrating, so the
+  // result equals the bias-free one to the input's own rounding (1e6·ε ≈ 1e-10 relative).
+  // A plain cumulative sum would reach 10^12 and lose ~4 digits here.
+  const auto noise = white_noise(2'000'000, 1.0, 5);
+  std::vector<double> biased(noise);
+  for (double& v : biased) v += 1e6;
+  const auto p0 = phase_from_rate(noise, 1.0);
+  const auto p1 = phase_from_rate(biased, 1.0);
+  for (auto type : {DeviationType::oadev, DeviationType::mdev, DeviationType::ohdev,
+                    DeviationType::totdev}) {
+    for (std::int64_t m : {1, 1000}) {
+      const double a = allan_family_variance(type, p0, m, 1.0).variance;
+      const double b = allan_family_variance(type, p1, m, 1.0).variance;
+      EXPECT_NEAR(b / a, 1.0, 1e-8) << to_string(type) << " m=" << m;
+    }
+  }
+}
+
+TEST(Deviation, PhaseAndRateInputAgree) {
+  const double tau0 = 0.5;
+  const auto y = white_noise(5000, 3.0, 9);
+  const auto from_rate = phase_from_rate(y, tau0);
+  // The same signal as raw (not mean-removed) phase: x_k = τ0·Σ y.
+  std::vector<double> raw(y.size() + 1, 0.0);
+  for (std::size_t k = 0; k < y.size(); ++k) raw[k + 1] = raw[k] + tau0 * y[k];
+  const auto from_phase = detrended_phase(raw);
+  for (auto type : {DeviationType::adev, DeviationType::oadev, DeviationType::mdev,
+                    DeviationType::tdev, DeviationType::hdev, DeviationType::ohdev,
+                    DeviationType::totdev}) {
+    for (std::int64_t m : {1, 7, 100}) {
+      const double a = allan_family_variance(type, from_rate, m, tau0).variance;
+      const double b = allan_family_variance(type, from_phase, m, tau0).variance;
+      EXPECT_NEAR(b / a, 1.0, 1e-10) << to_string(type) << " m=" << m;
+    }
+  }
+}
+
+TEST(Deviation, ConstantSignalGivesZeroWithoutNaN) {
+  const std::vector<double> y(1000, 4.25);
+  const auto phase = phase_from_rate(y, 1.0);
+  const std::int64_t factors[] = {1, 2, 8};
+  DeviationOptions options;
+  const auto curve = compute_deviation(phase, 1.0, factors, options);
+  for (const auto& p : curve.points) {
+    EXPECT_EQ(p.value, 0.0);
+    EXPECT_FALSE(std::isnan(p.ci_low) || std::isnan(p.ci_high) || std::isnan(p.edf));
+  }
+}
+
+TEST(Deviation, ResultsDoNotDependOnThreadCount) {
+  const auto phase = phase_from_rate(white_noise(200'000, 1.0, 3), 1.0);
+  const auto factors = averaging_factors(parse_tau_grid("log:5"), DeviationType::oadev,
+                                         static_cast<std::int64_t>(phase.size()));
+  DeviationOptions one;
+  one.threads = 1;
+  DeviationOptions many;
+  many.threads = 4;
+  const auto a = compute_deviation(phase, 1.0, factors, one);
+  const auto b = compute_deviation(phase, 1.0, factors, many);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    EXPECT_EQ(a.points[i].value, b.points[i].value);
+    EXPECT_EQ(a.points[i].ci_low, b.points[i].ci_low);
+    EXPECT_EQ(a.points[i].alpha, b.points[i].alpha);
+  }
+}
+
+TEST(Deviation, BadArgumentsAreClearErrors) {
+  const std::vector<double> phase(10, 0.0);
+  EXPECT_THROW(allan_family_variance(DeviationType::oadev, phase, 0, 1.0), AnalysisError);
+  EXPECT_THROW(allan_family_variance(DeviationType::oadev, phase, 5, 1.0), AnalysisError);
+  EXPECT_THROW(allan_family_variance(DeviationType::oadev, phase, 1, 0.0), AnalysisError);
+  const std::int64_t too_big[] = {3};
+  EXPECT_THROW(compute_deviation(phase, 1.0, too_big, DeviationOptions{}), AnalysisError);
+}
+
+}  // namespace
+}  // namespace imunoise::analysis

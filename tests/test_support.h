@@ -1,0 +1,52 @@
+/// @file
+/// @brief Shared helpers for the test suite: where the reference data and the CLI binary are.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace imunoise::test {
+
+/// Folder holding NIST / Stable32 reference data: $IMUNOISE_REFERENCE_DATA, else
+/// <source>/../shared/data. std::nullopt when it does not exist.
+std::optional<std::filesystem::path> reference_data_dir();
+
+/// Skips the current test (GTEST_SKIP) with a clear message when the reference data is
+/// absent; use as: IMUNOISE_REQUIRE_REFERENCE_DATA(dir);
+#define IMUNOISE_REQUIRE_REFERENCE_DATA(var)                                                  \
+  const auto var##_opt = ::imunoise::test::reference_data_dir();                              \
+  if (!var##_opt) {                                                                           \
+    GTEST_SKIP() << "reference data not found: set IMUNOISE_REFERENCE_DATA to the folder "     \
+                    "holding nist-sp1065-nbs/ and allantools-stable32/ (default ../shared/data)"; \
+  }                                                                                           \
+  const std::filesystem::path var = *var##_opt
+
+/// Path of the built `imunoise` binary.
+std::string imunoise_binary();
+
+/// A fresh empty temporary directory for one test (removed by the OS/tmp cleaner, not here).
+std::filesystem::path make_temp_dir(const std::string& tag);
+
+/// Result of running a shell command: exit code, stdout and stderr.
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs the imunoise binary with ARGS (a shell-quoted string), capturing both streams.
+CommandResult run_imunoise(const std::string& args);
+
+/// Reads a one-number-per-line file, skipping '#' comment and blank lines (test-side reader,
+/// independent of io/ so analysis tests do not depend on the production parser).
+std::vector<double> read_number_lines(const std::filesystem::path& path);
+
+/// A CSV file as rows of fields (header row first); handles double-quoted fields.
+std::vector<std::vector<std::string>> read_csv_rows(const std::filesystem::path& path);
+
+/// Writes TEXT to PATH (test fixtures).
+void write_text(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace imunoise::test

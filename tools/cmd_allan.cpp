@@ -1,0 +1,160 @@
+/// @file
+/// @brief `imunoise allan`: one Allan-family deviation curve of one series, with confidence
+/// intervals, as a table or as one JSON object.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "analysis/deviation.h"
+#include "analysis/tau_grid.h"
+#include "common/errors.h"
+#include "io/csv_reader.h"
+#include "tools/commands.h"
+
+namespace imunoise::tools {
+
+namespace {
+
+struct AllanArgs {
+  std::string file;
+  std::string column;
+  std::string data = "rate";
+  double tau0_s = 1.0;
+  std::string type = "oadev";
+  std::string taus = "octave";
+  double confidence = 0.683;
+  int alpha = 99;  // 99 = identify per τ
+  bool json = false;
+  bool drop_non_finite = false;
+  unsigned threads = 0;
+};
+
+void run_allan(const AllanArgs& args) {
+  const auto type = analysis::parse_deviation_type(args.type);
+  if (!type) throw InputError("unknown --type '" + args.type + "'");
+  if (!(args.tau0_s > 0.0) || !std::isfinite(args.tau0_s)) {
+    throw InputError("--tau0 must be a positive number of seconds");
+  }
+  const analysis::TauGridSpec grid = analysis::parse_tau_grid(args.taus);
+
+  io::SeriesReadOptions read_options;
+  read_options.column = args.column;
+  read_options.drop_non_finite = args.drop_non_finite;
+  const io::Series series = io::read_series(args.file, read_options);
+
+  const bool is_phase = args.data == "phase";
+  const std::size_t needed = is_phase ? 2 : 1;
+  if (series.values.size() < needed) {
+    throw AnalysisError(located_message(args.file, 0, 0,
+                                        "too few samples: " + std::to_string(series.values.size()) +
+                                            " value(s) in column '" + series.column_name + "'"));
+  }
+  // SI inside means: the phase is the integral of the input in input-unit·s.
+  const std::vector<double> phase = is_phase ? analysis::detrended_phase(series.values)
+                                             : analysis::phase_from_rate(series.values, args.tau0_s);
+  std::vector<std::int64_t> factors;
+  try {
+    factors = analysis::averaging_factors(grid, *type, static_cast<std::int64_t>(phase.size()));
+  } catch (const AnalysisError& e) {
+    throw AnalysisError(located_message(args.file, 0, 0, e.what()));
+  }
+
+  analysis::DeviationOptions options;
+  options.type = *type;
+  options.confidence = args.confidence;
+  if (args.alpha != 99) options.alpha = args.alpha;
+  options.threads = args.threads;
+  const analysis::DeviationCurve curve =
+      analysis::compute_deviation(phase, args.tau0_s, factors, options);
+
+  if (args.json) {
+    nlohmann::ordered_json out;
+    out["type"] = std::string(analysis::to_string(curve.type));
+    out["data"] = args.data;
+    out["tau0_s"] = curve.tau0_s;
+    out["n_samples"] = series.values.size();
+    out["confidence"] = curve.confidence;
+    out["source"] = args.file;
+    out["column"] = series.column_name;
+    out["n_phase"] = curve.n_phase;
+    out["non_finite_dropped"] = series.non_finite_dropped;
+    out["value_unit"] = curve.type == analysis::DeviationType::tdev ? "input unit * s"
+                                                                     : "input unit";
+    auto& points = out["points"] = nlohmann::ordered_json::array();
+    for (const auto& p : curve.points) {
+      points.push_back({{"m", p.m},
+                        {"tau_s", p.tau_s},
+                        {"value", p.value},
+                        {"n_terms", p.n_terms},
+                        {"alpha", p.alpha},
+                        {"edf", p.edf},
+                        {"ci_low", p.ci_low},
+                        {"ci_high", p.ci_high}});
+    }
+    std::cout << out.dump() << "\n";
+    return;
+  }
+  std::cout << fmt::format(
+      "# {} of {} column '{}' ({} data, tau0 = {} s, {} samples, {} phase points)\n"
+      "# confidence interval: {:.1f} % two-sided chi-square, EDF by Greenhall-Riley{}\n",
+      analysis::to_string(curve.type), args.file, series.column_name, args.data, args.tau0_s,
+      series.values.size(), curve.n_phase, 100.0 * curve.confidence,
+      options.alpha ? fmt::format(", alpha fixed at {}", *options.alpha)
+                    : ", alpha identified per tau (lag-1 ACF)");
+  if (series.non_finite_dropped > 0) {
+    std::cout << fmt::format("# {} NaN/Inf values dropped\n", series.non_finite_dropped);
+  }
+  std::cout << fmt::format("{:>10} {:>13} {:>10} {:>5} {:>11} {:>13} {:>13} {:>13}\n", "m",
+                           "tau_s", "n_terms", "alpha", "edf", "ci_low", "value", "ci_high");
+  for (const auto& p : curve.points) {
+    std::cout << fmt::format("{:>10} {:>13.6e} {:>10} {:>5} {:>11.4g} {:>13.6e} {:>13.6e} {:>13.6e}\n",
+                             p.m, p.tau_s, p.n_terms, p.alpha, p.edf, p.ci_low, p.value,
+                             p.ci_high);
+  }
+}
+
+}  // namespace
+
+void register_allan_command(CLI::App& app) {
+  auto args = std::make_shared<AllanArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "allan", "Allan-family deviation of one series (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV)");
+  cmd->footer(
+      "Examples:\n"
+      "  imunoise allan gyro_x.txt --tau0 0.01 --type oadev --taus log:10\n"
+      "  imunoise allan PHASE.DAT --data phase --type mdev --taus octave --json\n"
+      "  imunoise allan rec.csv --column gyro_z_rad_per_s --tau0 0.0025 --taus decade\n"
+      "Values are in the unit of the input (rate data) or input unit per second (phase data);\n"
+      "TDEV is in phase units.");
+  cmd->add_option("file", args->file, "CSV/TXT file: one value per line, or columns (see --column)")
+      ->required();
+  cmd->add_option("--column", args->column,
+                  "column name (header) or 1-based index; needed when the file has several");
+  cmd->add_option("--data", args->data, "the series is rate ('frequency') or integrated ('phase')")
+      ->check(CLI::IsMember({"rate", "phase"}))
+      ->capture_default_str();
+  cmd->add_option("--tau0", args->tau0_s, "sample period in seconds")->capture_default_str();
+  cmd->add_option("--type", args->type, "statistic")
+      ->check(CLI::IsMember({"adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev"}))
+      ->capture_default_str();
+  cmd->add_option("--taus", args->taus, "tau grid: octave, decade, all, log:N, or m1,m2,...")
+      ->capture_default_str();
+  cmd->add_option("--confidence", args->confidence, "two-sided confidence level of the interval")
+      ->check(CLI::Range(1e-6, 1.0 - 1e-9))
+      ->capture_default_str();
+  cmd->add_option("--alpha", args->alpha,
+                  "force the power-law noise type for the EDF (2 white PM .. -2 RW FM); "
+                  "default: identified per tau")
+      ->check(CLI::Range(-4, 2));
+  cmd->add_flag("--json", args->json, "print exactly one JSON object on stdout");
+  cmd->add_flag("--drop-non-finite", args->drop_non_finite,
+                "drop NaN/Inf values instead of failing (the count is reported)");
+  cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)")->capture_default_str();
+  cmd->callback([args] { run_allan(*args); });
+}
+
+}  // namespace imunoise::tools

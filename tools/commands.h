@@ -1,0 +1,17 @@
+/// @file
+/// @brief Registration of the imunoise subcommands; one cmd_<name>.cpp per subcommand.
+/// A subcommand's callback throws imunoise::InputError / AnalysisError on bad input; main()
+/// prints the message on one line and exits non-zero.
+#pragma once
+
+namespace CLI {
+class App;
+}
+
+namespace imunoise::tools {
+
+void register_allan_command(CLI::App& app);     ///< imunoise allan
+void register_check_command(CLI::App& app);     ///< imunoise check (sampling report)
+void register_simulate_command(CLI::App& app);  ///< imunoise simulate
+
+}  // namespace imunoise::tools

@@ -1,0 +1,46 @@
+/// @file
+/// @brief The imunoise command-line tool: parse → dispatch to one subcommand. Library errors
+/// arrive as typed exceptions and are reported here, once, on one line.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include "common/errors.h"
+#include "tools/commands.h"
+
+namespace {
+/// Exit codes: 0 success; CLI11's own codes for command-line syntax errors; these otherwise.
+constexpr int kExitInputError = 2;     ///< bad file, flag value or config
+constexpr int kExitAnalysisError = 3;  ///< the data cannot give what was asked
+constexpr int kExitInternalError = 4;  ///< a bug or resource exhaustion
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "imunoise — stationary-IMU recordings to Kalman-filter-ready stochastic error models.\n"
+      "Run 'imunoise <command> --help' for the options of each command."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "imunoise 0.1.0");
+  imunoise::tools::register_allan_command(app);
+  imunoise::tools::register_check_command(app);
+  imunoise::tools::register_simulate_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const imunoise::InputError& e) {
+    std::fprintf(stderr, "imunoise: error: %s\n", e.what());
+    return kExitInputError;
+  } catch (const imunoise::AnalysisError& e) {
+    std::fprintf(stderr, "imunoise: error: %s\n", e.what());
+    return kExitAnalysisError;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "imunoise: error: out of memory\n");
+    return kExitInternalError;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "imunoise: internal error: %s\n", e.what());
+    return kExitInternalError;
+  }
+  return 0;
+}
