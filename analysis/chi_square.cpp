@@ -78,6 +78,11 @@ struct GammaLogs {
 
 GammaLogs gamma_logs(double a, double u) {
   const double y = std::exp(u);
+  if (y > 1e300) {
+    // Only reached while bracketing a quantile: P = 1 and Q underflows even in logarithms.
+    constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
+    return {0.0, kMinusInf, kMinusInf};
+  }
   const double log_pre = log_prefactor(a, u);  // Γ(a+1) normalisation
   const double log_y_density = log_pre + std::log(a);
   const long cap = iteration_cap(a);

@@ -14,39 +14,38 @@
 namespace imunoise::analysis {
 namespace {
 
-/// Removes the least-squares quadratic a + b·t + c·t² in place. The basis 1, u, u² on
-/// u ∈ [−1, 1] is orthogonalised (Gram–Schmidt) against the actual samples, so the fit is
-/// well conditioned for any length and any offset of the data.
-/// Returns the residual energy Σz² after the fit, for the noiseless-input test.
+/// Removes the least-squares quadratic a + b·t + c·t² in place and returns the residual
+/// energy Σz². Uses the discrete orthogonal (Gram) polynomials of the uniform grid,
+/// 1, s, s² − (n² − 1)/12 with s = i − (n−1)/2, so the fit is well conditioned for any length
+/// and offset and needs no storage beyond z (records can have ~1e7 points).
 double remove_quadratic(std::vector<double>& z) {
   const std::size_t n = z.size();
-  const double half = 0.5 * static_cast<double>(n - 1);
-  std::vector<std::vector<double>> basis;
-  for (int degree = 0; degree <= 2; ++degree) {
-    std::vector<double> v(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double u = half > 0.0 ? (static_cast<double>(i) - half) / half : 0.0;
-      v[i] = degree == 0 ? 1.0 : (degree == 1 ? u : u * u);
-    }
-    for (const auto& b : basis) {
-      double dot = 0.0;
-      for (std::size_t i = 0; i < n; ++i) dot += v[i] * b[i];
-      for (std::size_t i = 0; i < n; ++i) v[i] -= dot * b[i];
-    }
-    double norm = 0.0;
-    for (const double value : v) norm += value * value;
-    norm = std::sqrt(norm);
-    if (norm == 0.0) continue;  // n < 3: fewer independent basis vectors
-    for (double& value : v) value /= norm;
-    basis.push_back(std::move(v));
+  const double centre = 0.5 * static_cast<double>(n - 1);
+  const double shift = (static_cast<double>(n) * static_cast<double>(n) - 1.0) / 12.0;
+  auto basis = [&](std::size_t i, double& p1, double& p2) {
+    p1 = static_cast<double>(i) - centre;
+    p2 = p1 * p1 - shift;
+  };
+  double dot0 = 0.0, dot1 = 0.0, dot2 = 0.0, norm1 = 0.0, norm2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double p1 = 0.0, p2 = 0.0;
+    basis(i, p1, p2);
+    dot0 += z[i];
+    dot1 += z[i] * p1;
+    dot2 += z[i] * p2;
+    norm1 += p1 * p1;
+    norm2 += p2 * p2;
   }
-  for (const auto& b : basis) {
-    double dot = 0.0;
-    for (std::size_t i = 0; i < n; ++i) dot += z[i] * b[i];
-    for (std::size_t i = 0; i < n; ++i) z[i] -= dot * b[i];
-  }
+  const double c0 = dot0 / static_cast<double>(n);
+  const double c1 = norm1 > 0.0 ? dot1 / norm1 : 0.0;
+  const double c2 = norm2 > 0.0 ? dot2 / norm2 : 0.0;
   double energy = 0.0;
-  for (const double v : z) energy += v * v;
+  for (std::size_t i = 0; i < n; ++i) {
+    double p1 = 0.0, p2 = 0.0;
+    basis(i, p1, p2);
+    z[i] -= c0 + c1 * p1 + c2 * p2;
+    energy += z[i] * z[i];
+  }
   return energy;
 }
 

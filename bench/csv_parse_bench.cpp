@@ -16,7 +16,8 @@ namespace {
 /// Writes the benchmark file once per process and returns its path.
 const std::string& bench_csv() {
   static const std::string path = [] {
-    const std::string p = (std::filesystem::temp_directory_path() / "imunoise_bench_7col.csv").string();
+    const std::string p =
+        (std::filesystem::temp_directory_path() / "imunoise_bench_7col.csv").string();
     std::FILE* f = std::fopen(p.c_str(), "wb");
     if (f == nullptr) throw std::runtime_error("cannot write " + p);
     std::fputs(

@@ -54,6 +54,7 @@ void BM_OadevOctave(benchmark::State& s) { run_curve(s, DeviationType::oadev, "o
 void BM_OadevLog10(benchmark::State& s) { run_curve(s, DeviationType::oadev, "log:10", false); }
 void BM_OhdevOctave(benchmark::State& s) { run_curve(s, DeviationType::ohdev, "octave", false); }
 void BM_OhdevLog10(benchmark::State& s) { run_curve(s, DeviationType::ohdev, "log:10", false); }
+void BM_HdevOctave(benchmark::State& s) { run_curve(s, DeviationType::hdev, "octave", false); }
 void BM_HdevLog10(benchmark::State& s) { run_curve(s, DeviationType::hdev, "log:10", false); }
 void BM_MdevLog10(benchmark::State& s) { run_curve(s, DeviationType::mdev, "log:10", false); }
 void BM_TotdevLog10(benchmark::State& s) { run_curve(s, DeviationType::totdev, "log:10", false); }
@@ -84,6 +85,7 @@ BENCHMARK(BM_OadevOctave)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OadevLog10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OhdevOctave)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OhdevLog10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HdevOctave)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HdevLog10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MdevLog10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TotdevLog10)->Unit(benchmark::kMillisecond);

@@ -138,8 +138,8 @@ class LineSource {
       got = ::read(fd_, buffer_.data() + end_, buffer_.size() - end_);
     } while (got < 0 && errno == EINTR);
     if (got < 0) {
-      throw InputError(located_message(path_, line_number_ + 1, 0,
-                                       "cannot read: " + errno_text(errno)));
+      throw InputError(
+          located_message(path_, line_number_ + 1, 0, "cannot read: " + errno_text(errno)));
     }
     if (got == 0) {
       eof_ = true;
@@ -168,10 +168,14 @@ bool is_content(std::string_view line) {
 
 char delimiter_char(Delimiter d) {
   switch (d) {
-    case Delimiter::kComma: return ',';
-    case Delimiter::kTab: return '\t';
-    case Delimiter::kSemicolon: return ';';
-    default: return ' ';
+    case Delimiter::kComma:
+      return ',';
+    case Delimiter::kTab:
+      return '\t';
+    case Delimiter::kSemicolon:
+      return ';';
+    default:
+      return ' ';
   }
 }
 
@@ -193,7 +197,8 @@ inline std::size_t for_each_field(std::string_view line, Delimiter delimiter, On
   }
   const char sep = delimiter_char(delimiter);
   for (;;) {
-    const char* d = static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
+    const char* d =
+        static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
     const char* fe = d != nullptr ? d : end;
     const char* b = p;
     while (b != fe && is_blank(*b)) ++b;
@@ -375,15 +380,20 @@ std::string TableLayout::column_label(std::size_t index) const {
 
 std::string TableLayout::describe_columns() const {
   if (!has_header()) {
-    return column_count == 1 ? std::string("1 (no header row)")
-                             : "1.." + std::to_string(column_count) +
-                                   " (no header row; use 1-based indices)";
+    return column_count == 1
+               ? std::string("1 (no header row)")
+               : "1.." + std::to_string(column_count) + " (no header row; use 1-based indices)";
   }
+  constexpr std::size_t kMaxListed = 40;  // keep error messages one readable line
   std::string out;
   for (std::size_t i = 0; i < column_names.size(); ++i) {
+    if (i == kMaxListed) {
+      out += ", ... (" + std::to_string(column_names.size() - kMaxListed) + " more)";
+      break;
+    }
     if (i > 0) out += ", ";
-    out += column_names[i].empty() ? "(unnamed " + std::to_string(i + 1) + ")"
-                                   : show(column_names[i]);
+    out +=
+        column_names[i].empty() ? "(unnamed " + std::to_string(i + 1) + ")" : show(column_names[i]);
   }
   return out;
 }
@@ -515,8 +525,9 @@ std::optional<std::size_t> TableReader::find_column(std::string_view selector) c
 std::size_t TableReader::resolve_column(std::string_view selector) const {
   if (const auto found = find_column(selector)) return *found;
   const TableLayout& layout = impl_->layout;
-  const bool numeric = !selector.empty() && std::all_of(selector.begin(), selector.end(),
-                                                        [](char c) { return c >= '0' && c <= '9'; });
+  const bool numeric =
+      !selector.empty() &&
+      std::all_of(selector.begin(), selector.end(), [](char c) { return c >= '0' && c <= '9'; });
   std::string what;
   if (numeric) {
     what = "column index " + show(selector) + " out of range: the file has " +
@@ -549,8 +560,9 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
       slot = static_cast<int>(column_of_slot.size());
       column_of_slot.push_back(req.index);
       relative.push_back(req.relative_to_first);
-    } else if (req.relative_to_first) {
-      relative[static_cast<std::size_t>(slot)] = 1;
+    } else if (static_cast<bool>(relative[static_cast<std::size_t>(slot)]) !=
+               req.relative_to_first) {
+      throw std::invalid_argument("TableReader::read: column requested both relative and not");
     }
     output_slot[r] = static_cast<std::size_t>(slot);
   }
@@ -575,8 +587,9 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
   TableData data;
   std::int64_t kept = 0;
   const std::string count_origin =
-      layout.has_header() ? "as in the header on line " + std::to_string(layout.header_line)
-                          : "as in the first data row on line " + std::to_string(im.first_data_line);
+      layout.has_header()
+          ? "as in the header on line " + std::to_string(layout.header_line)
+          : "as in the first data row on line " + std::to_string(im.first_data_line);
 
   std::string_view line;
   while (im.source.next(line)) {
@@ -654,8 +667,9 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
 
   if (kept == 0) {
     if (data.rows_dropped > 0) {
-      im.fail(0, 0, "no data rows left after dropping " + std::to_string(data.rows_dropped) +
-                        " row(s) holding NaN/Inf");
+      im.fail(0, 0,
+              "no data rows left after dropping " + std::to_string(data.rows_dropped) +
+                  " row(s) holding NaN/Inf");
     }
     im.fail(layout.header_line, 0, "header row but no data rows");
   }
@@ -763,12 +777,13 @@ std::optional<GroupMapping<Unit>> find_named_group(
 template <typename Unit, std::size_t N>
 std::optional<GroupMapping<Unit>> map_group(
     const TableReader& reader, const std::string& path, std::string_view group,
-    const std::vector<std::string>& selectors, const std::optional<Unit>& unit,
-    Unit default_unit, const std::array<std::pair<std::string_view, Unit>, N>& suffixes) {
+    const std::vector<std::string>& selectors, const std::optional<Unit>& unit, Unit default_unit,
+    const std::array<std::pair<std::string_view, Unit>, N>& suffixes) {
   if (!selectors.empty()) {
     if (selectors.size() > 3) {
       throw InputError(located_message(path, 0, 0,
-                                       std::string(group) + " columns: give 1 to 3 (x, y, z), got " +
+                                       std::string(group) +
+                                           " columns: give 1 to 3 (x, y, z), got " +
                                            std::to_string(selectors.size())));
     }
     GroupMapping<Unit> mapping{{}, unit.value_or(default_unit)};
@@ -796,7 +811,8 @@ Recording read_recording(const std::string& path, const InputConfig& config) {
     throw InputError(located_message(path, 0, 0, "give either a time column or a rate, not both"));
   }
   if (config.rate_hz && !(std::isfinite(*config.rate_hz) && *config.rate_hz > 0.0)) {
-    throw InputError(located_message(path, 0, 0, "the sample rate must be a positive number of Hz"));
+    throw InputError(
+        located_message(path, 0, 0, "the sample rate must be a positive number of Hz"));
   }
 
   // Time: a fixed rate, an explicit column, or a recognised name.
@@ -832,7 +848,8 @@ Recording read_recording(const std::string& path, const InputConfig& config) {
   const auto accel = map_group(reader, path, "accel", config.accel_columns, config.accel_unit,
                                AccelUnit::kMPerS2, kAccelSuffixes);
   std::vector<std::size_t> extra;
-  for (const ExtraColumn& e : config.extra_columns) extra.push_back(reader.resolve_column(e.column));
+  for (const ExtraColumn& e : config.extra_columns)
+    extra.push_back(reader.resolve_column(e.column));
   if (!gyro && !accel && extra.empty()) {
     throw InputError(located_message(
         path, layout.header_line, 0,
@@ -853,6 +870,13 @@ Recording read_recording(const std::string& path, const InputConfig& config) {
     for (std::size_t c : accel->columns) requests.push_back({c, false});
   }
   for (std::size_t c : extra) requests.push_back({c, false});
+  for (std::size_t r = first_channel_request; time_column && r < requests.size(); ++r) {
+    if (requests[r].index == *time_column) {
+      throw InputError(located_message(path, layout.header_line, 0,
+                                       layout.column_label(*time_column) +
+                                           " is mapped both as the time column and as a channel"));
+    }
+  }
 
   TableData data = reader.read(requests, config.drop_non_finite.value_or(false));
   const std::size_t n = data.columns.front().size();

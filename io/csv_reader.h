@@ -61,7 +61,7 @@ struct ColumnRequest {
 /// Extracted columns, in request order.
 struct TableData {
   std::vector<std::vector<double>> columns;
-  std::vector<double> first_values;    ///< first kept value of each column, as written
+  std::vector<double> first_values;     ///< first kept value of each column, as written
   std::int64_t non_finite_dropped = 0;  ///< NaN/Inf values in dropped rows
   std::int64_t rows_dropped = 0;        ///< rows dropped for NaN/Inf
   std::int64_t first_data_line = 0;     ///< line of the first kept row
@@ -87,7 +87,8 @@ class TableReader {
   std::size_t resolve_column(std::string_view selector) const;
 
   /// Reads all rows once. NaN/Inf: InputError, or with drop_non_finite the row is dropped and
-  /// counted. Throws InputError at the first malformed token or wrong column count.
+  /// counted. Throws InputError at the first malformed token or wrong column count. A column
+  /// may be requested twice only with the same relative_to_first (else invalid_argument).
   TableData read(std::span<const ColumnRequest> columns, bool drop_non_finite);
 
  private:

@@ -48,73 +48,104 @@ std::optional<AccelUnit> parse_accel_unit(std::string_view text) {
 
 std::string_view to_string(Delimiter d) {
   switch (d) {
-    case Delimiter::kAuto: return "auto";
-    case Delimiter::kComma: return "comma";
-    case Delimiter::kTab: return "tab";
-    case Delimiter::kSemicolon: return "semicolon";
-    case Delimiter::kWhitespace: return "space";
+    case Delimiter::kAuto:
+      return "auto";
+    case Delimiter::kComma:
+      return "comma";
+    case Delimiter::kTab:
+      return "tab";
+    case Delimiter::kSemicolon:
+      return "semicolon";
+    case Delimiter::kWhitespace:
+      return "space";
   }
   return "?";
 }
 
 std::string_view to_string(TimeUnit u) {
   switch (u) {
-    case TimeUnit::kSecond: return "s";
-    case TimeUnit::kMillisecond: return "ms";
-    case TimeUnit::kMicrosecond: return "us";
-    case TimeUnit::kNanosecond: return "ns";
+    case TimeUnit::kSecond:
+      return "s";
+    case TimeUnit::kMillisecond:
+      return "ms";
+    case TimeUnit::kMicrosecond:
+      return "us";
+    case TimeUnit::kNanosecond:
+      return "ns";
   }
   return "?";
 }
 
 std::string_view to_string(GyroUnit u) {
   switch (u) {
-    case GyroUnit::kRadPerS: return "rad/s";
-    case GyroUnit::kDegPerS: return "deg/s";
-    case GyroUnit::kDegPerHour: return "deg/h";
-    case GyroUnit::kRadIncrement: return "rad";
-    case GyroUnit::kDegIncrement: return "deg";
+    case GyroUnit::kRadPerS:
+      return "rad/s";
+    case GyroUnit::kDegPerS:
+      return "deg/s";
+    case GyroUnit::kDegPerHour:
+      return "deg/h";
+    case GyroUnit::kRadIncrement:
+      return "rad";
+    case GyroUnit::kDegIncrement:
+      return "deg";
   }
   return "?";
 }
 
 std::string_view to_string(AccelUnit u) {
   switch (u) {
-    case AccelUnit::kMPerS2: return "m/s^2";
-    case AccelUnit::kG: return "g";
-    case AccelUnit::kMilliG: return "mg";
-    case AccelUnit::kMPerSIncrement: return "m/s";
+    case AccelUnit::kMPerS2:
+      return "m/s^2";
+    case AccelUnit::kG:
+      return "g";
+    case AccelUnit::kMilliG:
+      return "mg";
+    case AccelUnit::kMPerSIncrement:
+      return "m/s";
   }
   return "?";
 }
 
 double si_factor(TimeUnit u) {
   switch (u) {
-    case TimeUnit::kSecond: return 1.0;
-    case TimeUnit::kMillisecond: return units::kMillisecond;
-    case TimeUnit::kMicrosecond: return units::kMicrosecond;
-    case TimeUnit::kNanosecond: return units::kNanosecond;
+    case TimeUnit::kSecond:
+      return 1.0;
+    case TimeUnit::kMillisecond:
+      return units::kMillisecond;
+    case TimeUnit::kMicrosecond:
+      return units::kMicrosecond;
+    case TimeUnit::kNanosecond:
+      return units::kNanosecond;
   }
   return 1.0;
 }
 
 double si_factor(GyroUnit u) {
   switch (u) {
-    case GyroUnit::kRadPerS: return 1.0;
-    case GyroUnit::kDegPerS: return units::kDegPerS;
-    case GyroUnit::kDegPerHour: return units::kDegPerHour;
-    case GyroUnit::kRadIncrement: return 1.0;
-    case GyroUnit::kDegIncrement: return units::kDeg;
+    case GyroUnit::kRadPerS:
+      return 1.0;
+    case GyroUnit::kDegPerS:
+      return units::kDegPerS;
+    case GyroUnit::kDegPerHour:
+      return units::kDegPerHour;
+    case GyroUnit::kRadIncrement:
+      return 1.0;
+    case GyroUnit::kDegIncrement:
+      return units::kDeg;
   }
   return 1.0;
 }
 
 double si_factor(AccelUnit u) {
   switch (u) {
-    case AccelUnit::kMPerS2: return 1.0;
-    case AccelUnit::kG: return units::kG;
-    case AccelUnit::kMilliG: return units::kMilliG;
-    case AccelUnit::kMPerSIncrement: return 1.0;
+    case AccelUnit::kMPerS2:
+      return 1.0;
+    case AccelUnit::kG:
+      return units::kG;
+    case AccelUnit::kMilliG:
+      return units::kMilliG;
+    case AccelUnit::kMPerSIncrement:
+      return 1.0;
   }
   return 1.0;
 }
@@ -198,8 +229,8 @@ class ConfigParser {
       fail(node, "'" + key + "' must be a list of 1 to 3 columns, e.g. [gx, gy, gz] or [2, 3, 4]");
     }
     if (node.size() < 1 || node.size() > 3) {
-      fail(node, "'" + key + "' must list 1 to 3 columns (x, y, z), got " +
-                     std::to_string(node.size()));
+      fail(node,
+           "'" + key + "' must list 1 to 3 columns (x, y, z), got " + std::to_string(node.size()));
     }
     std::vector<std::string> out;
     for (const auto& item : node) out.push_back(column(item, key));
@@ -218,9 +249,9 @@ class ConfigParser {
   InputConfig parse(const YAML::Node& root) const {
     InputConfig config;
     if (!root || root.IsNull()) return config;  // an empty file means "all defaults"
-    check_keys(root, "",
-               {"delimiter", "time", "rate_hz", "gyro", "accel", "drop_non_finite",
-                "extra_columns"});
+    check_keys(
+        root, "",
+        {"delimiter", "time", "rate_hz", "gyro", "accel", "drop_non_finite", "extra_columns"});
     if (const auto n = root["delimiter"]) {
       const std::string text = scalar(n, "delimiter");
       config.delimiter = parse_delimiter(text);

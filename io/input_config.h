@@ -31,9 +31,10 @@ enum class AccelUnit { kMPerS2, kG, kMilliG, kMPerSIncrement };
 
 /// @name Unit names (as written in configs and flags) and their SI factors
 /// @{
-std::optional<Delimiter> parse_delimiter(std::string_view text);  ///< auto|comma|tab|semicolon|space
-std::optional<TimeUnit> parse_time_unit(std::string_view text);    ///< s|ms|us|ns
-std::optional<GyroUnit> parse_gyro_unit(std::string_view text);    ///< rad/s|deg/s|deg/h|rad|deg
+std::optional<Delimiter> parse_delimiter(
+    std::string_view text);                                      ///< auto|comma|tab|semicolon|space
+std::optional<TimeUnit> parse_time_unit(std::string_view text);  ///< s|ms|us|ns
+std::optional<GyroUnit> parse_gyro_unit(std::string_view text);  ///< rad/s|deg/s|deg/h|rad|deg
 std::optional<AccelUnit> parse_accel_unit(std::string_view text);  ///< m/s^2|g|mg|m/s
 std::string_view to_string(Delimiter d);
 std::string_view to_string(TimeUnit u);
@@ -57,11 +58,11 @@ struct ExtraColumn {
 /// the columns `imunoise simulate` writes (`gyro_x_rad_per_s` … `accel_z_m_per_s2`).
 struct InputConfig {
   std::optional<Delimiter> delimiter;
-  std::string time_column;           ///< time-stamp column; empty = automatic
-  std::optional<TimeUnit> time_unit;  ///< unit of time_column (default s)
-  std::optional<double> rate_hz;     ///< fixed sample rate [Hz], instead of a time column
-  std::vector<std::string> gyro_columns;  ///< 1–3 columns (x, y, z order); empty = automatic
-  std::optional<GyroUnit> gyro_unit;      ///< default rad/s
+  std::string time_column;                 ///< time-stamp column; empty = automatic
+  std::optional<TimeUnit> time_unit;       ///< unit of time_column (default s)
+  std::optional<double> rate_hz;           ///< fixed sample rate [Hz], instead of a time column
+  std::vector<std::string> gyro_columns;   ///< 1–3 columns (x, y, z order); empty = automatic
+  std::optional<GyroUnit> gyro_unit;       ///< default rad/s
   std::vector<std::string> accel_columns;  ///< 1–3 columns; empty = automatic
   std::optional<AccelUnit> accel_unit;     ///< default m/s²
   std::optional<bool> drop_non_finite;     ///< drop rows holding NaN/Inf instead of failing

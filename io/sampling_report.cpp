@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cinttypes>
-#include <cstdarg>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -116,38 +116,60 @@ std::optional<double> estimate_lsb(std::span<const double> values) {
   // Steps below this are float rounding of equal codes, not a change of code.
   const double noise_floor = scale * 1e-12;
   constexpr double kMaxLevels = 16777216.0;  // 2^24: no IMU ADC has a finer code grid
+  constexpr double kTolerance = 0.1;         // |step − k·q| allowed, as a fraction of q
 
-  double q = std::numeric_limits<double>::infinity();
+  double q0 = std::numeric_limits<double>::infinity();
   std::int64_t steps = 0;
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double d = std::fabs(values[i + 1] - values[i]);
     if (d > noise_floor) {
-      q = std::min(q, d);
+      q0 = std::min(q0, d);
       ++steps;
     }
   }
   if (steps < 8) return std::nullopt;
 
-  // A few rounds: check every step is a multiple of q; if one is not, q becomes the common
-  // divisor of q and that step (smallest step seen was 2 LSB, say). Then refine q by least
-  // squares over small multiples so that large steps are judged against an accurate q.
-  for (int round = 0; round < 8; ++round) {
-    if (!(q > noise_floor) || range / q > kMaxLevels) return std::nullopt;
-    double sum_d = 0.0, sum_k = 0.0, offender = 0.0;
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-      const double d = std::fabs(values[i + 1] - values[i]);
-      if (d <= noise_floor) continue;
-      const double k = std::nearbyint(d / q);
-      if (k < 1.0 || std::fabs(d - k * q) > 0.1 * q) {
-        offender = d;
-        break;
-      }
-      if (k <= 16.0) {
-        sum_d += d;
-        sum_k += k;
-      }
+  // The common divisor is searched among small steps (≤ 64 smallest steps): Euclid on a large
+  // step would multiply q's rounding error by the step's multiple.
+  std::vector<double> small;
+  for (std::size_t i = 0; i + 1 < n && small.size() < 4096; ++i) {
+    const double d = std::fabs(values[i + 1] - values[i]);
+    if (d > noise_floor && d <= 64.0 * q0) small.push_back(d);
+  }
+  const auto is_multiple = [&](double d, double q) {
+    const double k = std::nearbyint(d / q);
+    return k >= 1.0 && std::fabs(d - k * q) <= kTolerance * q;
+  };
+  // Least squares q = Σd / Σk over the small steps that fit the grid: averages the decimal
+  // printing error of each value down, so large steps are judged against an accurate q.
+  const auto refine = [&](double q) {
+    double sum_d = 0.0, sum_k = 0.0;
+    for (double d : small) {
+      if (!is_multiple(d, q)) continue;
+      sum_d += d;
+      sum_k += std::nearbyint(d / q);
     }
-    if (offender == 0.0) return sum_k > 0.0 ? sum_d / sum_k : q;
+    return sum_k > 0.0 ? sum_d / sum_k : q;
+  };
+
+  double q = q0;
+  for (int round = 0; round < 16; ++round) {
+    if (!(q > noise_floor) || range / q > kMaxLevels) return std::nullopt;
+    // First make q divide every small step; q is then still a difference of data values,
+    // accurate to their rounding, so refining it cannot pull it off the grid.
+    const auto small_offender =
+        std::find_if_not(small.begin(), small.end(), [&](double d) { return is_multiple(d, q); });
+    if (small_offender != small.end()) {
+      q = approximate_gcd(q, *small_offender);
+      continue;
+    }
+    q = refine(q);
+    double offender = 0.0;
+    for (std::size_t i = 0; offender == 0.0 && i + 1 < n; ++i) {
+      const double d = std::fabs(values[i + 1] - values[i]);
+      if (d > noise_floor && !is_multiple(d, q)) offender = d;
+    }
+    if (offender == 0.0) return q;
     q = approximate_gcd(q, offender);
   }
   return std::nullopt;
@@ -212,7 +234,8 @@ std::string printf_string(const char* format, ...) {
   const int len = std::vsnprintf(buffer, sizeof buffer, format, args);
   va_end(args);
   if (len < 0) return {};
-  return std::string(buffer, std::min<std::size_t>(static_cast<std::size_t>(len), sizeof buffer - 1));
+  return std::string(buffer,
+                     std::min<std::size_t>(static_cast<std::size_t>(len), sizeof buffer - 1));
 }
 
 std::string where(const std::optional<SampleLocation>& loc) {

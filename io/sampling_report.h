@@ -23,21 +23,21 @@ struct SampleLocation {
 
 /// Tunables of the checks.
 struct SamplingOptions {
-  double gap_factor = 1.5;                ///< an interval > gap_factor × median is a gap
-  std::int64_t saturation_min_run = 5;    ///< identical samples at min/max that make a run
+  double gap_factor = 1.5;              ///< an interval > gap_factor × median is a gap
+  std::int64_t saturation_min_run = 5;  ///< identical samples at min/max that make a run
   /// Maps a 0-based sample index to its 1-based file line (set by readers; may be empty).
   std::function<std::int64_t(std::size_t)> line_of_sample;
 };
 
 /// Time-stamp checks. All intervals are t[i+1] − t[i].
 struct TimingReport {
-  bool has_timestamps = false;     ///< false: a fixed rate was given
-  double rate_hz = 0.0;            ///< 1 / median interval (or the given rate); 0 if unknown
-  double median_interval_s = 0.0;  ///< median of all intervals (of the positive ones if ≤ 0)
-  double duration_s = 0.0;         ///< last − first time stamp
-  double mean_rate_hz = 0.0;       ///< (n − 1) / duration
-  std::int64_t gap_count = 0;      ///< intervals > gap_factor × median
-  double longest_gap_s = 0.0;      ///< longest such interval [s]
+  bool has_timestamps = false;       ///< false: a fixed rate was given
+  double rate_hz = 0.0;              ///< 1 / median interval (or the given rate); 0 if unknown
+  double median_interval_s = 0.0;    ///< median of all intervals (of the positive ones if ≤ 0)
+  double duration_s = 0.0;           ///< last − first time stamp
+  double mean_rate_hz = 0.0;         ///< (n − 1) / duration
+  std::int64_t gap_count = 0;        ///< intervals > gap_factor × median
+  double longest_gap_s = 0.0;        ///< longest such interval [s]
   std::int64_t missing_samples = 0;  ///< Σ over gaps of round(gap / median) − 1
   std::optional<SampleLocation> first_gap;  ///< sample after the first gap
   std::int64_t non_monotonic_count = 0;     ///< intervals < 0
@@ -53,15 +53,15 @@ struct ChannelReport {
   std::string name;
   std::string unit;
   double min = 0.0, max = 0.0, mean = 0.0, std_dev = 0.0;
-  bool constant = false;                   ///< all samples equal (no saturation runs counted)
-  std::int64_t saturation_runs = 0;        ///< runs of ≥ min_run identical samples at min or max
-  std::int64_t saturated_samples = 0;      ///< samples in those runs
+  bool constant = false;               ///< all samples equal (no saturation runs counted)
+  std::int64_t saturation_runs = 0;    ///< runs of ≥ min_run identical samples at min or max
+  std::int64_t saturated_samples = 0;  ///< samples in those runs
   std::int64_t longest_saturation_run = 0;
   std::optional<SampleLocation> first_saturation;
-  std::optional<double> full_scale;        ///< user limit, if any
-  std::int64_t beyond_full_scale = 0;      ///< samples with |value| ≥ full_scale
+  std::optional<double> full_scale;    ///< user limit, if any
+  std::int64_t beyond_full_scale = 0;  ///< samples with |value| ≥ full_scale
   std::optional<SampleLocation> first_beyond_full_scale;
-  std::optional<double> lsb;               ///< quantization step; empty = none detected
+  std::optional<double> lsb;  ///< quantization step; empty = none detected
 };
 
 /// Everything `imunoise check` reports about a recording.

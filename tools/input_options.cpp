@@ -10,12 +10,18 @@ namespace imunoise::tools {
 
 namespace {
 
+/// "gx, gy,gz" → {"gx", "gy", "gz"} (blanks around names are not part of them).
 std::vector<std::string> split_columns(const std::string& text) {
   std::vector<std::string> out;
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = text.find(',', start);
-    out.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    const std::string item =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const auto first = item.find_first_not_of(" \t");
+    const auto last = item.find_last_not_of(" \t");
+    out.push_back(first == std::string::npos ? std::string()
+                                             : item.substr(first, last - first + 1));
     if (comma == std::string::npos) return out;
     start = comma + 1;
   }
@@ -23,7 +29,8 @@ std::vector<std::string> split_columns(const std::string& text) {
 
 std::string check_columns(const std::string& text) {
   const std::vector<std::string> columns = split_columns(text);
-  if (columns.size() > 3) return "give 1 to 3 columns (x,y,z), got " + std::to_string(columns.size());
+  if (columns.size() > 3)
+    return "give 1 to 3 columns (x,y,z), got " + std::to_string(columns.size());
   for (const std::string& c : columns) {
     if (c.empty()) return "empty column in '" + text + "' (use names or 1-based indices: 2,3,4)";
   }
@@ -53,7 +60,8 @@ void add_input_options(CLI::App& cmd, io::InputConfig& config, std::string& conf
                        ->type_name("COL")
                        ->group(group);
   cmd.add_option_function<std::string>(
-         "--time-unit", [&config](const std::string& v) { config.time_unit = io::parse_time_unit(v); },
+         "--time-unit",
+         [&config](const std::string& v) { config.time_unit = io::parse_time_unit(v); },
          "unit of the time column: s, ms, us, ns (default s)")
       ->check(spelled(io::parse_time_unit, "s, ms, us, ns"))
       ->type_name("UNIT")
@@ -66,14 +74,14 @@ void add_input_options(CLI::App& cmd, io::InputConfig& config, std::string& conf
                    ->group(group);
   rate->excludes(time_col);
   cmd.add_option_function<std::string>(
-         "--gyro-cols",
-         [&config](const std::string& v) { config.gyro_columns = split_columns(v); },
+         "--gyro-cols", [&config](const std::string& v) { config.gyro_columns = split_columns(v); },
          "gyro x,y,z columns: names or 1-based indices (default: gyro_x_rad_per_s, ...)")
       ->check(check_columns)
       ->type_name("A,B,C")
       ->group(group);
   cmd.add_option_function<std::string>(
-         "--gyro-unit", [&config](const std::string& v) { config.gyro_unit = io::parse_gyro_unit(v); },
+         "--gyro-unit",
+         [&config](const std::string& v) { config.gyro_unit = io::parse_gyro_unit(v); },
          "rad/s, deg/s, deg/h, or rad / deg for angle increments per sample (default rad/s)")
       ->check(spelled(io::parse_gyro_unit, "rad/s, deg/s, deg/h, rad, deg"))
       ->type_name("UNIT")
@@ -120,7 +128,8 @@ void add_input_options(CLI::App& cmd, io::InputConfig& config, std::string& conf
 }
 
 io::InputConfig resolve_input_config(const io::InputConfig& flags, const std::string& config_path) {
-  const io::InputConfig file = config_path.empty() ? io::InputConfig{} : io::load_input_config(config_path);
+  const io::InputConfig file =
+      config_path.empty() ? io::InputConfig{} : io::load_input_config(config_path);
   return io::merge_input_configs(file, flags);
 }
 

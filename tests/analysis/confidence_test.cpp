@@ -19,16 +19,18 @@ using ::testing::HasSubstr;
 const double kOneSigma = std::erf(1.0 / std::sqrt(2.0));
 
 TEST(Confidence, MatchesTheoryDeviationFactors) {
-  // theory.md §3.1 factors, printed with 3 decimals; they were computed for the exact
-  // one-sigma coverage erf(1/√2) — with 0.683 the ν = 10 lower factor is 0.83539, which
-  // would print as 0.835, while erf(1/√2) gives 0.835503 → 0.836.
+  // theory.md §3.1 factors, printed with 3 decimals for the exact one-sigma coverage
+  // erf(1/√2). One entry is off: the ν = 10 lower factor is 0.835497 (0.83539 at 0.683; the
+  // even-dof Poisson sum in chi_square_test confirms the quantile), which the doc prints as
+  // 0.836 — a double rounding 0.835497 → 0.8355 → 0.836. It is checked here at 4 decimals.
   struct Row {
-    double nu, low, high;
+    double nu, low, high, tolerance;
   };
-  for (const Row& r : {Row{10, 0.836, 1.327}, Row{50, 0.913, 1.117}, Row{200, 0.954, 1.054}}) {
+  for (const Row& r :
+       {Row{10, 0.8355, 1.327, 5e-4}, Row{50, 0.913, 1.117, 5e-4}, Row{200, 0.954, 1.054, 5e-4}}) {
     const DeviationInterval ci = deviation_interval(1.0, r.nu, kOneSigma);
-    EXPECT_NEAR(ci.low, r.low, 5e-4) << r.nu;
-    EXPECT_NEAR(ci.high, r.high, 5e-4) << r.nu;
+    EXPECT_NEAR(ci.low, r.low, r.nu == 10 ? 5e-5 : r.tolerance) << r.nu;
+    EXPECT_NEAR(ci.high, r.high, r.tolerance) << r.nu;
   }
 }
 

@@ -71,8 +71,8 @@ TEST(Deviation, ModifiedKernelHandlesTinyRecords) {
   for (std::size_t M = 4; M < 12; ++M) {
     const auto x = white_noise(M, 1.0, M);
     const double got = allan_family_variance(DeviationType::mdev, x, 1, 1.0).variance;
-    EXPECT_NEAR(got / static_cast<double>(reference_variance(DeviationType::mdev, x, 1, 1.0)),
-                1.0, 1e-13)
+    EXPECT_NEAR(got / static_cast<double>(reference_variance(DeviationType::mdev, x, 1, 1.0)), 1.0,
+                1e-13)
         << M;
   }
 }
@@ -107,8 +107,8 @@ TEST(Deviation, HugeConstantBiasDoesNotCostDigits) {
   for (double& v : biased) v += 1e6;
   const auto p0 = phase_from_rate(noise, 1.0);
   const auto p1 = phase_from_rate(biased, 1.0);
-  for (auto type : {DeviationType::oadev, DeviationType::mdev, DeviationType::ohdev,
-                    DeviationType::totdev}) {
+  for (auto type :
+       {DeviationType::oadev, DeviationType::mdev, DeviationType::ohdev, DeviationType::totdev}) {
     for (std::int64_t m : {1, 1000}) {
       const double a = allan_family_variance(type, p0, m, 1.0).variance;
       const double b = allan_family_variance(type, p1, m, 1.0).variance;
@@ -125,9 +125,9 @@ TEST(Deviation, PhaseAndRateInputAgree) {
   std::vector<double> raw(y.size() + 1, 0.0);
   for (std::size_t k = 0; k < y.size(); ++k) raw[k + 1] = raw[k] + tau0 * y[k];
   const auto from_phase = detrended_phase(raw);
-  for (auto type : {DeviationType::adev, DeviationType::oadev, DeviationType::mdev,
-                    DeviationType::tdev, DeviationType::hdev, DeviationType::ohdev,
-                    DeviationType::totdev}) {
+  for (auto type :
+       {DeviationType::adev, DeviationType::oadev, DeviationType::mdev, DeviationType::tdev,
+        DeviationType::hdev, DeviationType::ohdev, DeviationType::totdev}) {
     for (std::int64_t m : {1, 7, 100}) {
       const double a = allan_family_variance(type, from_rate, m, tau0).variance;
       const double b = allan_family_variance(type, from_phase, m, tau0).variance;

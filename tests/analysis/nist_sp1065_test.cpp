@@ -26,9 +26,9 @@ const std::vector<double> kNbs9Frequency = {892, 809, 823, 798, 671, 644, 883, 9
 
 std::optional<DeviationType> type_of(const std::string& statistic) {
   static const std::map<std::string, DeviationType> kTypes = {
-      {"ADEV", DeviationType::adev},   {"OADEV", DeviationType::oadev},
-      {"MDEV", DeviationType::mdev},   {"TDEV", DeviationType::tdev},
-      {"HDEV", DeviationType::hdev},   {"OHDEV", DeviationType::ohdev},
+      {"ADEV", DeviationType::adev},    {"OADEV", DeviationType::oadev},
+      {"MDEV", DeviationType::mdev},    {"TDEV", DeviationType::tdev},
+      {"HDEV", DeviationType::hdev},    {"OHDEV", DeviationType::ohdev},
       {"TOTDEV", DeviationType::totdev}};
   const auto it = kTypes.find(statistic);
   if (it == kTypes.end()) return std::nullopt;
@@ -84,8 +84,10 @@ TEST(NistSp1065, ModifiedAndTimeDeviationAreConsistent) {
   // TDEV = τ·MDEV/√3 (SP 1065 eq. 15) — checked on the NBS14 set at several m.
   const auto phase = phase_from_rate(nbs14_1000_frequency(), 1.0);
   for (std::int64_t m : {1, 3, 7, 50, 200}) {
-    const double mdev = std::sqrt(allan_family_variance(DeviationType::mdev, phase, m, 1.0).variance);
-    const double tdev = std::sqrt(allan_family_variance(DeviationType::tdev, phase, m, 1.0).variance);
+    const double mdev =
+        std::sqrt(allan_family_variance(DeviationType::mdev, phase, m, 1.0).variance);
+    const double tdev =
+        std::sqrt(allan_family_variance(DeviationType::tdev, phase, m, 1.0).variance);
     EXPECT_NEAR(tdev, static_cast<double>(m) * mdev / std::sqrt(3.0), 1e-14 * tdev) << m;
   }
 }

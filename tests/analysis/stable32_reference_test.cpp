@@ -9,49 +9,13 @@
 
 #include "analysis/deviation.h"
 #include "analysis/tau_grid.h"
+#include "stable32_tables.h"
 #include "test_support.h"
 
 namespace imunoise::analysis {
 namespace {
 
-std::optional<DeviationType> stable32_type(const std::string& sigma_type) {
-  static const std::map<std::string, DeviationType> kTypes = {
-      {"Allan", DeviationType::adev},
-      {"Overlapping Allan", DeviationType::oadev},
-      {"Modified Allan", DeviationType::mdev},
-      {"Time", DeviationType::tdev},
-      {"Hadamard", DeviationType::hdev},
-      {"Overlapping Hadamard", DeviationType::ohdev},
-      {"Total", DeviationType::totdev}};
-  const auto it = kTypes.find(sigma_type);
-  if (it == kTypes.end()) return std::nullopt;
-  return it->second;
-}
-
-struct TableRow {
-  std::string source_file;
-  DeviationType type;
-  std::int64_t m;
-  double tau_s;
-  std::int64_t n;
-  int alpha;
-  double sigma_min, sigma, sigma_max;
-  bool ci_given;
-};
-
-std::vector<TableRow> load_rows(const std::filesystem::path& csv) {
-  std::vector<TableRow> rows;
-  const auto raw = test::read_csv_rows(csv);
-  for (std::size_t i = 1; i < raw.size(); ++i) {
-    const auto& r = raw[i];
-    const auto type = stable32_type(r[0]);
-    if (!type) continue;  // MTOTDEV, TTOTDEV, HTOTDEV, Theo1, MTIE, TIE rms: not implemented
-    rows.push_back({r[1], *type, std::stoll(r[4]), std::stod(r[5]), std::stoll(r[6]),
-                    std::stoi(r[7]), std::stod(r[8]), std::stod(r[9]), std::stod(r[10]),
-                    r[11] == "yes"});
-  }
-  return rows;
-}
+using test::Stable32Row;
 
 /// Checks every row of a data set. VALUE_TOL: relative tolerance on sigma; BOUNDS: whether to
 /// check the confidence bounds (at 1e-3 relative, the table's alpha forced).
@@ -62,7 +26,7 @@ struct CheckResult {
   double max_bound_error = 0.0;
 };
 
-CheckResult check_table(const std::vector<TableRow>& rows, std::span<const double> series,
+CheckResult check_table(const std::vector<Stable32Row>& rows, std::span<const double> series,
                         bool series_is_phase, double value_tol, bool check_bounds,
                         const std::set<std::string>& only_files = {}) {
   CheckResult result;
@@ -82,7 +46,7 @@ CheckResult check_table(const std::vector<TableRow>& rows, std::span<const doubl
     result.max_value_error = std::max(result.max_value_error, err);
     EXPECT_LE(err, value_tol) << row.source_file << " m=" << row.m << " value " << value
                               << " table " << row.sigma;
-    EXPECT_EQ(v.n_terms, row.n) << row.source_file << " m=" << row.m;
+    EXPECT_EQ(v.n_terms, row.n_terms) << row.source_file << " m=" << row.m;
     ++result.rows;
     if (check_bounds && row.ci_given) {
       DeviationOptions options;
@@ -100,11 +64,11 @@ CheckResult check_table(const std::vector<TableRow>& rows, std::span<const doubl
       const double hi_err = std::abs(p.ci_high / row.sigma_max - 1.0);
       result.max_bound_error = std::max({result.max_bound_error, lo_err, hi_err});
       EXPECT_LE(lo_err, 1e-3) << row.source_file << " m=" << row.m << " alpha=" << row.alpha
-                              << " ci_low " << p.ci_low << " table " << row.sigma_min
-                              << " edf " << p.edf;
+                              << " ci_low " << p.ci_low << " table " << row.sigma_min << " edf "
+                              << p.edf;
       EXPECT_LE(hi_err, 1e-3) << row.source_file << " m=" << row.m << " alpha=" << row.alpha
-                              << " ci_high " << p.ci_high << " table " << row.sigma_max
-                              << " edf " << p.edf;
+                              << " ci_high " << p.ci_high << " table " << row.sigma_max << " edf "
+                              << p.edf;
       ++result.bound_rows;
     }
   }
@@ -116,7 +80,8 @@ TEST(Stable32, MatchesPhasedatTables) {
   const auto dir = data / "allantools-stable32" / "phasedat";
   const auto phase = test::read_number_lines(dir / "PHASE.DAT");
   ASSERT_EQ(phase.size(), 1001u);
-  const auto result = check_table(load_rows(dir / "expected_stable32.csv"), phase, true, 1e-4, true);
+  const auto result =
+      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), phase, true, 1e-4, true);
   EXPECT_GT(result.rows, 900);
   EXPECT_GT(result.bound_rows, 50);
   RecordProperty("max_value_error", std::to_string(result.max_value_error));
@@ -128,7 +93,7 @@ TEST(Stable32, MatchesPinkFrequencyTables) {
   const auto dir = data / "allantools-stable32" / "pink_frequency";
   const auto y = test::read_number_lines(dir / "pink_frequency.txt");
   ASSERT_EQ(y.size(), 10000u);
-  const auto result = check_table(load_rows(dir / "expected_stable32.csv"), y, false, 1e-4, true);
+  const auto result = check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 1e-4, true);
   EXPECT_GT(result.rows, 1400);
   EXPECT_GT(result.bound_rows, 10);
 }
@@ -138,7 +103,8 @@ TEST(Stable32, MatchesKeysightTimeIntervalNoiseFloorTables) {
   const auto dir = data / "allantools-stable32" / "Keysight53230A_ti_noise_floor";
   const auto phase = test::read_number_lines(dir / "tic_phase.txt");
   ASSERT_EQ(phase.size(), 55688u);
-  const auto result = check_table(load_rows(dir / "expected_stable32.csv"), phase, true, 1e-4, true);
+  const auto result =
+      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), phase, true, 1e-4, true);
   EXPECT_GT(result.rows, 340);
 }
 
@@ -155,12 +121,12 @@ TEST(Stable32, MatchesOcxoAllTauTables) {
   const auto dir = data / "allantools-stable32" / "ocxo";
   const auto y = ocxo_fractional_frequency(dir);
   ASSERT_EQ(y.size(), 19982u);
-  const std::set<std::string> all_tau = {
-      "stable32_adev_alltau.txt",  "stable32_oadev_alltau.txt", "stable32_mdev_alltau.txt",
-      "stable32_tdev_alltau.txt",  "stable32_hdev_alltau.txt",  "stable32_ohdev_alltau.txt",
-      "stable32_totdev_alltau.txt"};
+  const std::set<std::string> all_tau = {"stable32_adev_alltau.txt",  "stable32_oadev_alltau.txt",
+                                         "stable32_mdev_alltau.txt",  "stable32_tdev_alltau.txt",
+                                         "stable32_hdev_alltau.txt",  "stable32_ohdev_alltau.txt",
+                                         "stable32_totdev_alltau.txt"};
   const auto result =
-      check_table(load_rows(dir / "expected_stable32.csv"), y, false, 1e-4, false, all_tau);
+      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 1e-4, false, all_tau);
   EXPECT_GT(result.rows, 1900);
 }
 
@@ -175,7 +141,7 @@ TEST(Stable32, MatchesOcxoOctaveTablesWithinTheirDocumentedRoundOff) {
   const std::set<std::string> octave = {"adev_octave.txt", "oadev_octave.txt", "mdev_octave.txt",
                                         "tdev_octave.txt", "hdev_octave.txt",  "ohdev_octave.txt"};
   const auto result =
-      check_table(load_rows(dir / "expected_stable32.csv"), y, false, 2e-3, false, octave);
+      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 2e-3, false, octave);
   EXPECT_GT(result.rows, 70);
 }
 

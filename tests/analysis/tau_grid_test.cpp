@@ -64,8 +64,8 @@ TEST(TauGrid, AllGridOnLongRecordIsRefusedNotHung) {
 }
 
 TEST(TauGrid, MalformedSpecsAreInputErrors) {
-  for (const char* bad : {"", "log:", "log:0", "log:x", "1,,2", "0", "-3", "octaves", "1.5",
-                          "log:100000"}) {
+  for (const char* bad :
+       {"", "log:", "log:0", "log:x", "1,,2", "0", "-3", "octaves", "1.5", "log:100000"}) {
     EXPECT_THROW(parse_tau_grid(bad), InputError) << bad;
   }
 }

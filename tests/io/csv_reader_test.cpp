@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "common/errors.h"
@@ -57,7 +58,8 @@ TEST(TableReader, DetectsCommaWithHeader) {
 }
 
 TEST(TableReader, DetectsTabSemicolonAndSpaces) {
-  EXPECT_EQ(TableReader(fixture("t.tsv", "1\t2\t3\n4\t5\t6\n")).layout().delimiter, Delimiter::kTab);
+  EXPECT_EQ(TableReader(fixture("t.tsv", "1\t2\t3\n4\t5\t6\n")).layout().delimiter,
+            Delimiter::kTab);
   EXPECT_EQ(TableReader(fixture("s.csv", "a;b\n1;2\n")).layout().delimiter, Delimiter::kSemicolon);
   TableReader spaces(fixture("w.txt", "  1.0   2.0 3.0\n4.0 5.0\t\t6.0  \n"));
   EXPECT_EQ(spaces.layout().delimiter, Delimiter::kWhitespace);
@@ -172,8 +174,9 @@ TEST(ReadSeriesErrors, UnknownColumnListsAvailable) {
   const auto path = fixture("u.csv", "index,x\n0,1\n");
   EXPECT_THAT(error_of([&] { series(path, "y"); }),
               HasSubstr("u.csv:1: unknown column 'y' (available columns: index, x)"));
-  EXPECT_THAT(error_of([&] { series(path, "5"); }),
-              HasSubstr("column index 5 out of range: the file has 2 column(s), indices start at 1"));
+  EXPECT_THAT(
+      error_of([&] { series(path, "5"); }),
+      HasSubstr("column index 5 out of range: the file has 2 column(s), indices start at 1"));
   EXPECT_THAT(error_of([&] { series(fixture("nh.txt", "1 2\n"), "x"); }),
               HasSubstr("nh.txt: unknown column 'x' (available columns: 1..2 (no header row"));
 }
@@ -219,7 +222,11 @@ TEST(ReadSeriesErrors, BinaryGarbage) {
   // High bytes without NUL: a malformed token, printed escaped and bounded.
   EXPECT_THAT(error_of([&] { series(fixture("hi.dat", "1\n\x80\x81\xfe\n")); }),
               HasSubstr("hi.dat:2:1: malformed number '\\x80\\x81\\xFE'"));
-  EXPECT_THAT(error_of([&] { series(fixture("u16.txt", std::string("\xFF\xFE" "1\0", 4))); }),
+  EXPECT_THAT(error_of([&] {
+                series(fixture("u16.txt", std::string("\xFF\xFE"
+                                                      "1\0",
+                                                      4)));
+              }),
               HasSubstr("u16.txt:1:1: text is UTF-16 encoded"));
 }
 
@@ -235,6 +242,57 @@ TEST(ReadSeriesErrors, LongMalformedTokenIsTruncated) {
   EXPECT_THAT(what, HasSubstr("lt.txt:2:1: malformed number 'xxxxxxxxxx"));
   EXPECT_THAT(what, HasSubstr("...'"));
   EXPECT_LT(what.size(), 200u);
+}
+
+TEST(ReadSeriesErrors, RandomMutationsOnlyEverThrowInputError) {
+  // Fixed-seed mutation fuzzing: flipped bytes, cut files, stray separators. Any outcome but
+  // a value or an InputError (a crash, another exception, a hang) fails the test.
+  const std::string base =
+      "# comment\ntime_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\r\n"
+      "0.00,1e-3,-2.5e-4,+3\n0.01,nan,4,5\n\n0.02,1,2,3";
+  std::string alphabet = "0123456789eE+-.,;\t #\r\nnaif\"\xff";
+  alphabet.push_back('\0');
+  std::mt19937 rng(2024);
+  const auto dir = test::make_temp_dir("fuzz");
+  int outcomes = 0;
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    std::string text = base;
+    const int edits = 1 + static_cast<int>(rng() % 6);
+    for (int e = 0; e < edits && !text.empty(); ++e) {
+      const std::size_t at = rng() % text.size();
+      switch (rng() % 3) {
+        case 0:
+          text[at] = alphabet[rng() % alphabet.size()];
+          break;
+        case 1:
+          text.insert(at, 1, alphabet[rng() % alphabet.size()]);
+          break;
+        default:
+          text.resize(at);
+          break;
+      }
+    }
+    std::string name = std::to_string(iteration);
+    name += ".csv";
+    const auto path = (dir / name).string();
+    test::write_text(path, text);
+    for (const char* column : {"", "2", "gyro_y_rad_per_s"}) {
+      try {
+        SeriesReadOptions options;
+        options.column = column;
+        options.drop_non_finite = (iteration % 2) == 0;
+        (void)read_series(path, options);
+      } catch (const InputError&) {
+      }
+      ++outcomes;
+    }
+    try {
+      (void)read_recording(path, {});
+    } catch (const InputError&) {
+    }
+    ++outcomes;
+  }
+  EXPECT_EQ(outcomes, 1600);
 }
 
 // --- line map ---------------------------------------------------------------------------------

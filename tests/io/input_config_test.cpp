@@ -48,11 +48,12 @@ TEST(Units, SpellingsRoundTrip) {
                  GyroUnit::kRadIncrement, GyroUnit::kDegIncrement}) {
     EXPECT_EQ(parse_gyro_unit(to_string(u)), u);
   }
-  for (auto u : {AccelUnit::kMPerS2, AccelUnit::kG, AccelUnit::kMilliG, AccelUnit::kMPerSIncrement}) {
+  for (auto u :
+       {AccelUnit::kMPerS2, AccelUnit::kG, AccelUnit::kMilliG, AccelUnit::kMPerSIncrement}) {
     EXPECT_EQ(parse_accel_unit(to_string(u)), u);
   }
-  for (auto u : {TimeUnit::kSecond, TimeUnit::kMillisecond, TimeUnit::kMicrosecond,
-                 TimeUnit::kNanosecond}) {
+  for (auto u :
+       {TimeUnit::kSecond, TimeUnit::kMillisecond, TimeUnit::kMicrosecond, TimeUnit::kNanosecond}) {
     EXPECT_EQ(parse_time_unit(to_string(u)), u);
   }
   EXPECT_EQ(parse_accel_unit("m/s2"), AccelUnit::kMPerS2);
@@ -155,7 +156,8 @@ TEST(LoadInputConfig, MissingFile) {
 }
 
 TEST(LoadInputConfig, ExampleConfigLoads) {
-  const InputConfig c = load_input_config(std::string(IMUNOISE_SOURCE_DIR) + "/configs/example_input.yaml");
+  const InputConfig c =
+      load_input_config(std::string(IMUNOISE_SOURCE_DIR) + "/configs/example_input.yaml");
   EXPECT_FALSE(c.gyro_columns.empty());
   EXPECT_TRUE(c.gyro_unit.has_value());
 }

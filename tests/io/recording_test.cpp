@@ -1,5 +1,7 @@
 // Tests of read_recording (io/csv_reader.h) and io/recording.h: column mapping, SI conversion
 // of every unit, increments, fixed rate, exact ns stamps, and the mapping errors.
+#include "io/recording.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,7 +11,6 @@
 #include "common/errors.h"
 #include "common/units.h"
 #include "io/csv_reader.h"
-#include "io/recording.h"
 #include "test_support.h"
 
 namespace imunoise::io {
@@ -145,7 +146,8 @@ TEST(ReadRecording, AngleAndVelocityIncrementsAreDividedByThePeriod) {
 }
 
 TEST(ReadRecording, FixedRateReplacesTimeColumn) {
-  const auto path = fixture("r.csv", std::string(kSimulateHeader) + "0,1,2,3,4,5,6\n9,1,2,3,4,5,6\n");
+  const auto path =
+      fixture("r.csv", std::string(kSimulateHeader) + "0,1,2,3,4,5,6\n9,1,2,3,4,5,6\n");
   InputConfig config;
   config.rate_hz = 50.0;
   const Recording rec = read_recording(path, config);
@@ -186,7 +188,7 @@ TEST(ReadRecording, ReportNamesFileLinesOfTimingAnomalies) {
                             "0.00,0,0,0\n"
                             "0.01,0,0,0\n"
                             "# resync\n"
-                            "0.01,0,0,0\n"   // line 6: duplicate
+                            "0.01,0,0,0\n"  // line 6: duplicate
                             "0.02,0,0,0\n"
                             "0.015,0,0,0\n"  // line 8: goes back
                             "0.03,0,0,0\n"
@@ -245,7 +247,8 @@ TEST(ReadRecordingErrors, UnknownMappedColumn) {
 TEST(ReadRecordingErrors, UnitContradictsColumnName) {
   InputConfig config;
   config.gyro_unit = GyroUnit::kDegPerS;
-  const auto path = fixture("c.csv", std::string(kSimulateHeader) + "0,1,2,3,4,5,6\n1,1,2,3,4,5,6\n");
+  const auto path =
+      fixture("c.csv", std::string(kSimulateHeader) + "0,1,2,3,4,5,6\n1,1,2,3,4,5,6\n");
   EXPECT_THAT(error_of([&] { read_recording(path, config); }),
               HasSubstr("column 'gyro_x_rad_per_s' is in rad/s but gyro unit deg/s was given"));
 }
@@ -259,13 +262,21 @@ TEST(ReadRecordingErrors, RateAndTimeColumnTogether) {
               HasSubstr("give either a time column or a rate, not both"));
 }
 
+TEST(ReadRecordingErrors, TimeColumnReusedAsChannel) {
+  InputConfig config;
+  config.time_column = "1";
+  config.gyro_columns = {"1", "2"};
+  EXPECT_THAT(error_of([&] { read_recording(fixture("tc.txt", "0 1\n1 2\n"), config); }),
+              HasSubstr("tc.txt: column 1 is mapped both as the time column and as a channel"));
+}
+
 TEST(ReadRecordingErrors, TooFewSamplesAndStuckClock) {
   const auto one = fixture("one.csv", std::string(kSimulateHeader) + "0,1,2,3,4,5,6\n");
   EXPECT_THAT(error_of([&] { read_recording(one, {}); }),
               HasSubstr("one.csv: too few samples: 1 (need at least 2 for a sample rate from time "
                         "stamps)"));
-  const auto stuck = fixture("stuck.csv", std::string(kSimulateHeader) +
-                                              "5,1,2,3,4,5,6\n5,1,2,3,4,5,6\n5,1,2,3,4,5,6\n");
+  const auto stuck = fixture(
+      "stuck.csv", std::string(kSimulateHeader) + "5,1,2,3,4,5,6\n5,1,2,3,4,5,6\n5,1,2,3,4,5,6\n");
   EXPECT_THAT(error_of([&] { read_recording(stuck, {}); }),
               HasSubstr("stuck.csv:2: cannot estimate the sample rate: the time stamps never "
                         "increase"));

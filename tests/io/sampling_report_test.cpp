@@ -138,9 +138,7 @@ TEST(AnalyzeChannel, MeanAndStd) {
   EXPECT_DOUBLE_EQ(r.std_dev, std::sqrt(5.0 / 3.0));
 }
 
-TEST(EstimateLsb, BinaryStep) {
-  EXPECT_EQ(estimate_lsb(quantized_walk(5000, 0.0625)), 0.0625);
-}
+TEST(EstimateLsb, BinaryStep) { EXPECT_EQ(estimate_lsb(quantized_walk(5000, 0.0625)), 0.0625); }
 
 TEST(EstimateLsb, ScaledAdcCodesInSi) {
   // 16-bit gyro at ±250 deg/s: 250/32768 deg/s per code, stored in rad/s.
@@ -172,6 +170,35 @@ TEST(EstimateLsb, DecimalPrintingOfCodes) {
   const auto q = estimate_lsb(v);
   ASSERT_TRUE(q.has_value());
   EXPECT_NEAR(*q, lsb, 1e-6);
+}
+
+TEST(EstimateLsb, PrintResolutionOfWideNoiseNearAnOffset) {
+  // Accelerometer-like 9.8 ± 0.02 m/s² printed with 6 decimals: the file's own step is 1e-6,
+  // though the smallest step between neighbours is usually several of them.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(9.8, 0.02);
+  std::vector<double> v(5000);
+  for (double& x : v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6f", noise(rng));
+    x = std::strtod(text, nullptr);
+  }
+  const auto q = estimate_lsb(v);
+  ASSERT_TRUE(q.has_value());
+  EXPECT_NEAR(*q, 1e-6, 1e-12);
+}
+
+TEST(EstimateLsb, NoneForNineSignificantDigits) {
+  // "%.9g" keeps relative, not absolute, resolution: no code grid.
+  std::mt19937 rng(9);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  std::vector<double> v(5000);
+  for (double& x : v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", noise(rng));
+    x = std::strtod(text, nullptr);
+  }
+  EXPECT_FALSE(estimate_lsb(v).has_value());
 }
 
 TEST(EstimateLsb, NoneForContinuousNoise) {

@@ -92,8 +92,7 @@ TEST(CheckCli, FixedRateAndFullScale) {
 TEST(CheckCli, FlagsOverrideConfigFile) {
   const auto dir = test::make_temp_dir("checkcfg");
   test::write_text(dir / "rec.csv", "t,g\n0,1\n1,1\n2,1\n");
-  test::write_text(dir / "in.yaml",
-                   "time:\n  column: t\ngyro:\n  columns: [g]\n  unit: deg/h\n");
+  test::write_text(dir / "in.yaml", "time:\n  column: t\ngyro:\n  columns: [g]\n  unit: deg/h\n");
   const std::string base = "check '" + (dir / "rec.csv").string() + "' --config '" +
                            (dir / "in.yaml").string() + "' --json";
   const auto from_file = test::run_imunoise(base);
@@ -122,8 +121,8 @@ TEST(CheckCli, DropNonFiniteIsCounted) {
 }
 
 TEST(CheckCli, BadNumberExitsWithFileLineColumn) {
-  const auto path = write_fixture("bad.csv", std::string(kSimulateHeader) +
-                                                 "0,1,1,1,0,0,9.8\n0.01,1,1,1,0,x1,9.8\n");
+  const auto path = write_fixture(
+      "bad.csv", std::string(kSimulateHeader) + "0,1,1,1,0,0,9.8\n0.01,1,1,1,0,x1,9.8\n");
   const auto r = test::run_imunoise("check '" + path + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("imunoise: error: " + path +
