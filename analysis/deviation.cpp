@@ -95,7 +95,8 @@ double modified_sum(const double* x, std::int64_t n, std::int64_t m) {
   const std::int64_t tail_start = kLanes * lane_length;
   double tail_w = 0.0;
   if (tail_start < n) {
-    tail_w = lane_length > 0 ? w[kLanes - 1] + third_difference(x, tail_start - 1, m) : window_at(0);
+    tail_w =
+        lane_length > 0 ? w[kLanes - 1] + third_difference(x, tail_start - 1, m) : window_at(0);
   }
   double tail = 0.0;
   for (std::int64_t j = tail_start; j < n; ++j) {
@@ -200,7 +201,8 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
     case DeviationType::mdev:
     case DeviationType::tdev: {  // theory.md §2 modified AVAR; TVAR = τ²/3 · MVAR
       const double s = modified_sum(x, n, m);
-      const double mvar = s / (2.0 * static_cast<double>(m) * static_cast<double>(m) * tau * tau * nn);
+      const double mvar =
+          s / (2.0 * static_cast<double>(m) * static_cast<double>(m) * tau * tau * nn);
       out.variance = type == DeviationType::mdev ? mvar : tau * tau / 3.0 * mvar;
       break;
     }
@@ -242,9 +244,9 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
   for (std::int64_t m : averaging_factors) {
     IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
                    "too few samples for the requested tau: m = " + std::to_string(m) + " (" +
-                       std::string(to_string(options.type)) + " allows m <= " +
-                       std::to_string(max_m) + " on " + std::to_string(curve.n_phase) +
-                       " phase samples)");
+                       std::string(to_string(options.type)) +
+                       " allows m <= " + std::to_string(max_m) + " on " +
+                       std::to_string(curve.n_phase) + " phase samples)");
   }
   curve.points.resize(averaging_factors.size());
 
@@ -268,7 +270,8 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
   // Every τ costs one O(M) pass, so τ values are independent work items for the threads;
   // each point is written by exactly one thread, so results do not depend on the count.
   unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
-  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(averaging_factors.size())));
+  threads =
+      std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(averaging_factors.size())));
   if (curve.n_phase < 50000) threads = 1;  // thread start-up would dominate
   if (threads <= 1) {
     for (std::size_t i = 0; i < averaging_factors.size(); ++i) compute_point(i);

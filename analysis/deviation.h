@@ -51,9 +51,9 @@ struct DeviationPoint {
 /// Options of compute_deviation().
 struct DeviationOptions {
   DeviationType type = DeviationType::oadev;
-  double confidence = 0.683;        ///< two-sided confidence level of [ci_low, ci_high]
-  std::optional<int> alpha;         ///< force the noise type (else identified per τ, §3.4)
-  unsigned threads = 0;             ///< worker threads across τ (0 = all cores)
+  double confidence = 0.683;  ///< two-sided confidence level of [ci_low, ci_high]
+  std::optional<int> alpha;   ///< force the noise type (else identified per τ, §3.4)
+  unsigned threads = 0;       ///< worker threads across τ (0 = all cores)
 };
 
 /// A deviation curve with confidence intervals.

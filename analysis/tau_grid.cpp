@@ -123,8 +123,8 @@ std::vector<std::int64_t> averaging_factors(const TauGridSpec& spec, DeviationTy
     case TauGridSpec::Kind::all: {
       const double work = static_cast<double>(max_m) * static_cast<double>(n_phase);
       if (work > kMaxAllGridWork) {
-        throw AnalysisError("the 'all' tau grid on " + std::to_string(n_phase) +
-                            " samples needs " + std::to_string(max_m) +
+        throw AnalysisError("the 'all' tau grid on " + std::to_string(n_phase) + " samples needs " +
+                            std::to_string(max_m) +
                             " passes over the data; use log:N (e.g. log:100) instead");
       }
       for (std::int64_t m = 1; m <= max_m; ++m) out.push_back(m);
@@ -146,9 +146,9 @@ std::vector<std::int64_t> averaging_factors(const TauGridSpec& spec, DeviationTy
           throw AnalysisError("too few samples for the requested tau: m = " + std::to_string(m) +
                               " needs at least " + std::to_string(m * stop_ratio(type)) +
                               " phase samples for " + std::string(to_string(type)) +
-                              " (stop ratio " + std::to_string(stop_ratio(type)) + "), the data has " +
-                              std::to_string(n_phase) + "; the largest usable m is " +
-                              std::to_string(max_m));
+                              " (stop ratio " + std::to_string(stop_ratio(type)) +
+                              "), the data has " + std::to_string(n_phase) +
+                              "; the largest usable m is " + std::to_string(max_m));
         }
         out.push_back(m);
       }

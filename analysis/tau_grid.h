@@ -14,15 +14,15 @@ namespace imunoise::analysis {
 /// How the averaging factors m (τ = m·τ0) are chosen (theory.md §2 "τ grids").
 struct TauGridSpec {
   enum class Kind {
-    octave,    ///< m = 1, 2, 4, 8, …
-    decade,    ///< m = 1, 2, 4, 10, 20, 40, 100, … (Stable32 / allantools "decade")
-    all,       ///< every m from 1 to the maximum (O(M²) in total: refused for long records)
-    log,       ///< per_decade log-spaced points per decade, rounded to integers, de-duplicated
+    octave,        ///< m = 1, 2, 4, 8, …
+    decade,        ///< m = 1, 2, 4, 10, 20, 40, 100, … (Stable32 / allantools "decade")
+    all,           ///< every m from 1 to the maximum (O(M²) in total: refused for long records)
+    log,           ///< per_decade log-spaced points per decade, rounded to integers, de-duplicated
     explicit_list  ///< the factors in `factors`, validated against the record length
   };
   Kind kind = Kind::octave;
-  int per_decade = 10;                 ///< for Kind::log
-  std::vector<std::int64_t> factors;   ///< for Kind::explicit_list (ascending, unique)
+  int per_decade = 10;                ///< for Kind::log
+  std::vector<std::int64_t> factors;  ///< for Kind::explicit_list (ascending, unique)
 };
 
 /// Parses "octave", "decade", "all", "log:N" (1 ≤ N ≤ 1000) or "m1,m2,…" (positive

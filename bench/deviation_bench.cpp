@@ -59,7 +59,9 @@ void BM_HdevLog10(benchmark::State& s) { run_curve(s, DeviationType::hdev, "log:
 void BM_MdevLog10(benchmark::State& s) { run_curve(s, DeviationType::mdev, "log:10", false); }
 void BM_TotdevLog10(benchmark::State& s) { run_curve(s, DeviationType::totdev, "log:10", false); }
 // Full curve: deviations + noise identification + EDF + CI, with N threads.
-void BM_OadevLog10WithCi(benchmark::State& s) { run_curve(s, DeviationType::oadev, "log:10", true); }
+void BM_OadevLog10WithCi(benchmark::State& s) {
+  run_curve(s, DeviationType::oadev, "log:10", true);
+}
 
 // The memory floor: stream the phase array once per τ of the log:10 grid (a plain sum).
 void BM_StreamFloorLog10(benchmark::State& state) {

@@ -16,9 +16,8 @@ AtomicOutputFile::AtomicOutputFile(std::string target_path)
       temp_(target_ + ".tmp." + std::to_string(static_cast<long>(::getpid()))) {
   out_.open(temp_, std::ios::binary | std::ios::trunc);
   if (!out_) {
-    throw InputError(located_message(target_, 0, 0,
-                                     std::string("cannot create output file (") +
-                                         std::strerror(errno) + ")"));
+    throw InputError(located_message(
+        target_, 0, 0, std::string("cannot create output file (") + std::strerror(errno) + ")"));
   }
 }
 
@@ -36,13 +35,15 @@ void AtomicOutputFile::commit() {
   if (!write_ok || out_.fail()) {
     std::remove(temp_.c_str());
     committed_ = true;
-    throw InputError(located_message(target_, 0, 0, "writing the output failed (disk full or I/O error)"));
+    throw InputError(
+        located_message(target_, 0, 0, "writing the output failed (disk full or I/O error)"));
   }
   if (std::rename(temp_.c_str(), target_.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
     std::remove(temp_.c_str());
     committed_ = true;
-    throw InputError(located_message(target_, 0, 0, "cannot move the output into place (" + reason + ")"));
+    throw InputError(
+        located_message(target_, 0, 0, "cannot move the output into place (" + reason + ")"));
   }
   committed_ = true;
 }

@@ -9,12 +9,9 @@ namespace imunoise::test {
 std::optional<analysis::DeviationType> stable32_type(const std::string& sigma_type) {
   using analysis::DeviationType;
   static const std::map<std::string, DeviationType> kTypes = {
-      {"Allan", DeviationType::adev},
-      {"Overlapping Allan", DeviationType::oadev},
-      {"Modified Allan", DeviationType::mdev},
-      {"Time", DeviationType::tdev},
-      {"Hadamard", DeviationType::hdev},
-      {"Overlapping Hadamard", DeviationType::ohdev},
+      {"Allan", DeviationType::adev},          {"Overlapping Allan", DeviationType::oadev},
+      {"Modified Allan", DeviationType::mdev}, {"Time", DeviationType::tdev},
+      {"Hadamard", DeviationType::hdev},       {"Overlapping Hadamard", DeviationType::ohdev},
       {"Total", DeviationType::totdev}};
   const auto it = kTypes.find(sigma_type);
   if (it == kTypes.end()) return std::nullopt;

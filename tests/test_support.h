@@ -15,12 +15,12 @@ std::optional<std::filesystem::path> reference_data_dir();
 
 /// Skips the current test (GTEST_SKIP) with a clear message when the reference data is
 /// absent; use as: IMUNOISE_REQUIRE_REFERENCE_DATA(dir);
-#define IMUNOISE_REQUIRE_REFERENCE_DATA(var)                                                  \
-  const auto var##_opt = ::imunoise::test::reference_data_dir();                              \
-  if (!var##_opt) {                                                                           \
-    GTEST_SKIP() << "reference data not found: set IMUNOISE_REFERENCE_DATA to the folder "     \
+#define IMUNOISE_REQUIRE_REFERENCE_DATA(var)                                                      \
+  const auto var##_opt = ::imunoise::test::reference_data_dir();                                  \
+  if (!var##_opt) {                                                                               \
+    GTEST_SKIP() << "reference data not found: set IMUNOISE_REFERENCE_DATA to the folder "        \
                     "holding nist-sp1065-nbs/ and allantools-stable32/ (default ../shared/data)"; \
-  }                                                                                           \
+  }                                                                                               \
   const std::filesystem::path var = *var##_opt
 
 /// Path of the built `imunoise` binary.

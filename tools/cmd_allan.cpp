@@ -1,9 +1,10 @@
 /// @file
 /// @brief `imunoise allan`: one Allan-family deviation curve of one series, with confidence
 /// intervals, as a table or as one JSON object.
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <fmt/format.h>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -54,8 +55,9 @@ void run_allan(const AllanArgs& args) {
                                             " value(s) in column '" + series.column_name + "'"));
   }
   // SI inside means: the phase is the integral of the input in input-unit·s.
-  const std::vector<double> phase = is_phase ? analysis::detrended_phase(series.values)
-                                             : analysis::phase_from_rate(series.values, args.tau0_s);
+  const std::vector<double> phase = is_phase
+                                        ? analysis::detrended_phase(series.values)
+                                        : analysis::phase_from_rate(series.values, args.tau0_s);
   std::vector<std::int64_t> factors;
   try {
     factors = analysis::averaging_factors(grid, *type, static_cast<std::int64_t>(phase.size()));
@@ -82,8 +84,8 @@ void run_allan(const AllanArgs& args) {
     out["column"] = series.column_name;
     out["n_phase"] = curve.n_phase;
     out["non_finite_dropped"] = series.non_finite_dropped;
-    out["value_unit"] = curve.type == analysis::DeviationType::tdev ? "input unit * s"
-                                                                     : "input unit";
+    out["value_unit"] =
+        curve.type == analysis::DeviationType::tdev ? "input unit * s" : "input unit";
     auto& points = out["points"] = nlohmann::ordered_json::array();
     for (const auto& p : curve.points) {
       points.push_back({{"m", p.m},
@@ -100,20 +102,21 @@ void run_allan(const AllanArgs& args) {
   }
   std::cout << fmt::format(
       "# {} of {} column '{}' ({} data, tau0 = {} s, {} samples, {} phase points)\n"
-      "# confidence interval: {:.1f} % two-sided chi-square, EDF by Greenhall-Riley{}\n",
+      "# confidence interval: {:.1f} % two-sided chi-square, EDF {}{}\n",
       analysis::to_string(curve.type), args.file, series.column_name, args.data, args.tau0_s,
       series.values.size(), curve.n_phase, 100.0 * curve.confidence,
+      curve.type == analysis::DeviationType::totdev ? "of SP 1065 (TOTDEV)" : "by Greenhall-Riley",
       options.alpha ? fmt::format(", alpha fixed at {}", *options.alpha)
                     : ", alpha identified per tau (lag-1 ACF)");
   if (series.non_finite_dropped > 0) {
     std::cout << fmt::format("# {} NaN/Inf values dropped\n", series.non_finite_dropped);
   }
-  std::cout << fmt::format("{:>10} {:>13} {:>10} {:>5} {:>11} {:>13} {:>13} {:>13}\n", "m",
-                           "tau_s", "n_terms", "alpha", "edf", "ci_low", "value", "ci_high");
+  std::cout << fmt::format("{:>10} {:>13} {:>10} {:>5} {:>11} {:>13} {:>13} {:>13}\n", "m", "tau_s",
+                           "n_terms", "alpha", "edf", "ci_low", "value", "ci_high");
   for (const auto& p : curve.points) {
-    std::cout << fmt::format("{:>10} {:>13.6e} {:>10} {:>5} {:>11.4g} {:>13.6e} {:>13.6e} {:>13.6e}\n",
-                             p.m, p.tau_s, p.n_terms, p.alpha, p.edf, p.ci_low, p.value,
-                             p.ci_high);
+    std::cout << fmt::format(
+        "{:>10} {:>13.6e} {:>10} {:>5} {:>11.4g} {:>13.6e} {:>13.6e} {:>13.6e}\n", p.m, p.tau_s,
+        p.n_terms, p.alpha, p.edf, p.ci_low, p.value, p.ci_high);
   }
 }
 
@@ -122,7 +125,8 @@ void run_allan(const AllanArgs& args) {
 void register_allan_command(CLI::App& app) {
   auto args = std::make_shared<AllanArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "allan", "Allan-family deviation of one series (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV)");
+      "allan",
+      "Allan-family deviation of one series (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV)");
   cmd->footer(
       "Examples:\n"
       "  imunoise allan gyro_x.txt --tau0 0.01 --type oadev --taus log:10\n"
@@ -153,7 +157,8 @@ void register_allan_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print exactly one JSON object on stdout");
   cmd->add_flag("--drop-non-finite", args->drop_non_finite,
                 "drop NaN/Inf values instead of failing (the count is reported)");
-  cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)")
+      ->capture_default_str();
   cmd->callback([args] { run_allan(*args); });
 }
 

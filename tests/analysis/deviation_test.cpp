@@ -66,6 +66,36 @@ TEST(Deviation, KernelsMatchLongDoubleReference) {
   }
 }
 
+TEST(Deviation, KernelsKeepFullPrecisionOnLongRecords) {
+  // 2^23 white-FM samples: the compensated block sums (OADEV, OHDEV) and the sliding window
+  // (MDEV) must agree with long-double references to ~1e-13, i.e. no error growing with M.
+  // MDEV reference: window sums from a long-double prefix sum of the second differences.
+  const std::int64_t m = 1000;
+  const auto phase = phase_from_rate(white_noise(1 << 23, 1.0, 21), 1.0);
+  const auto M = static_cast<std::int64_t>(phase.size());
+  for (auto type : {DeviationType::oadev, DeviationType::ohdev}) {
+    for (std::int64_t mm : {std::int64_t{1}, m}) {
+      const double got = allan_family_variance(type, phase, mm, 1.0).variance;
+      const long double want = reference_variance(type, phase, mm, 1.0);
+      EXPECT_NEAR(got / static_cast<double>(want), 1.0, 1e-13) << to_string(type) << " m=" << mm;
+    }
+  }
+  std::vector<long double> prefix(static_cast<std::size_t>(M - 2 * m + 1), 0.0L);
+  for (std::int64_t k = 0; k + 2 * m < M; ++k) {
+    prefix[k + 1] =
+        prefix[k] + (static_cast<long double>(phase[k + 2 * m]) - 2.0L * phase[k + m] + phase[k]);
+  }
+  long double s = 0;
+  const std::int64_t n = M - 3 * m + 1;
+  for (std::int64_t j = 0; j < n; ++j) {
+    const long double w = prefix[j + m] - prefix[j];
+    s += w * w;
+  }
+  const long double want = s / (2.0L * m * m * m * m * n);
+  const double got = allan_family_variance(DeviationType::mdev, phase, m, 1.0).variance;
+  EXPECT_NEAR(got / static_cast<double>(want), 1.0, 1e-12);
+}
+
 TEST(Deviation, ModifiedKernelHandlesTinyRecords) {
   // n = M − 3m + 1 from 1 to 7 terms: lanes empty, partial, and tail-only paths.
   for (std::size_t M = 4; M < 12; ++M) {

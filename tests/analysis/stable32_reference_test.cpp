@@ -93,7 +93,8 @@ TEST(Stable32, MatchesPinkFrequencyTables) {
   const auto dir = data / "allantools-stable32" / "pink_frequency";
   const auto y = test::read_number_lines(dir / "pink_frequency.txt");
   ASSERT_EQ(y.size(), 10000u);
-  const auto result = check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 1e-4, true);
+  const auto result =
+      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 1e-4, true);
   EXPECT_GT(result.rows, 1400);
   EXPECT_GT(result.bound_rows, 10);
 }
@@ -125,8 +126,8 @@ TEST(Stable32, MatchesOcxoAllTauTables) {
                                          "stable32_mdev_alltau.txt",  "stable32_tdev_alltau.txt",
                                          "stable32_hdev_alltau.txt",  "stable32_ohdev_alltau.txt",
                                          "stable32_totdev_alltau.txt"};
-  const auto result =
-      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 1e-4, false, all_tau);
+  const auto result = check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false,
+                                  1e-4, false, all_tau);
   EXPECT_GT(result.rows, 1900);
 }
 
@@ -140,8 +141,8 @@ TEST(Stable32, MatchesOcxoOctaveTablesWithinTheirDocumentedRoundOff) {
   const auto y = ocxo_fractional_frequency(dir);
   const std::set<std::string> octave = {"adev_octave.txt", "oadev_octave.txt", "mdev_octave.txt",
                                         "tdev_octave.txt", "hdev_octave.txt",  "ohdev_octave.txt"};
-  const auto result =
-      check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false, 2e-3, false, octave);
+  const auto result = check_table(test::load_stable32_rows(dir / "expected_stable32.csv"), y, false,
+                                  2e-3, false, octave);
   EXPECT_GT(result.rows, 70);
 }
 

@@ -44,8 +44,9 @@ TEST(AllanCli, JsonIsOneObjectWithPublishedValues) {
 
 TEST(AllanCli, PhaseDataFromNistFileMatchesPublishedOadev) {
   IMUNOISE_REQUIRE_REFERENCE_DATA(data);
-  const auto r = run_imunoise("allan '" + (data / "nist-sp1065-nbs" / "nbs14_1000_phase.csv").string() +
-                              "' --column x --data phase --type oadev --taus 1,10,100 --json");
+  const auto r =
+      run_imunoise("allan '" + (data / "nist-sp1065-nbs" / "nbs14_1000_phase.csv").string() +
+                   "' --column x --data phase --type oadev --taus 1,10,100 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["n_samples"], 1001);
