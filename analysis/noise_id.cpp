@@ -27,6 +27,7 @@ double remove_quadratic(std::vector<double>& z) {
     p2 = p1 * p1 - shift;
   };
   double dot0 = 0.0, dot1 = 0.0, dot2 = 0.0, norm1 = 0.0, norm2 = 0.0;
+#pragma omp simd reduction(+ : dot0, dot1, dot2, norm1, norm2)
   for (std::size_t i = 0; i < n; ++i) {
     double p1 = 0.0, p2 = 0.0;
     basis(i, p1, p2);
@@ -40,6 +41,7 @@ double remove_quadratic(std::vector<double>& z) {
   const double c1 = norm1 > 0.0 ? dot1 / norm1 : 0.0;
   const double c2 = norm2 > 0.0 ? dot2 / norm2 : 0.0;
   double energy = 0.0;
+#pragma omp simd reduction(+ : energy)
   for (std::size_t i = 0; i < n; ++i) {
     double p1 = 0.0, p2 = 0.0;
     basis(i, p1, p2);
@@ -52,16 +54,21 @@ double remove_quadratic(std::vector<double>& z) {
 /// Lag-1 autocorrelation r₁ = Σ(z_i − z̄)(z_{i+1} − z̄) / Σ(z_i − z̄)², [RG04] eq. (2);
 /// std::nullopt when the denominator is zero.
 std::optional<double> lag1_autocorrelation(const std::vector<double>& z) {
+  const std::size_t n = z.size();
+  if (n < 2) return std::nullopt;
   double mean = 0.0;
-  for (const double v : z) mean += v;
-  mean /= static_cast<double>(z.size());
+#pragma omp simd reduction(+ : mean)
+  for (std::size_t i = 0; i < n; ++i) mean += z[i];
+  mean /= static_cast<double>(n);
   double num = 0.0;
   double den = 0.0;
-  for (std::size_t i = 0; i < z.size(); ++i) {
+#pragma omp simd reduction(+ : num, den)
+  for (std::size_t i = 0; i < n - 1; ++i) {
     const double a = z[i] - mean;
     den += a * a;
-    if (i + 1 < z.size()) num += a * (z[i + 1] - mean);
+    num += a * (z[i + 1] - mean);
   }
+  den += (z[n - 1] - mean) * (z[n - 1] - mean);
   if (!(den > 0.0) || !std::isfinite(den)) return std::nullopt;
   return num / den;
 }
@@ -84,7 +91,8 @@ std::optional<int> lag1_noise_alpha(std::span<const double> phase, std::int64_t 
   }
   // A quadratic in phase is a frequency offset plus a linear drift: not noise.
   double energy = 0.0;
-  for (const double v : z) energy += v * v;
+#pragma omp simd reduction(+ : energy)
+  for (std::size_t i = 0; i < z.size(); ++i) energy += z[i] * z[i];
   const double residual = remove_quadratic(z);
   // Residual RMS below 1e-13 of the data RMS is round-off of an exact quadratic (~1e-16),
   // not noise; real records sit orders of magnitude above it.

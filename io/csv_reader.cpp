@@ -704,9 +704,34 @@ Series read_series(const std::string& path, const SeriesReadOptions& options) {
             " columns; choose one by name or 1-based index (--column); available columns: " +
             layout.describe_columns()));
   }
-  const ColumnRequest request{column, false};
-  TableData data = reader.read({&request, 1}, options.drop_non_finite);
+  // The time column, when asked for and the header names one in a known unit.
+  std::optional<std::size_t> time_column;
+  double time_factor = 1.0;
+  std::string time_name;
+  if (options.read_time && layout.has_header()) {
+    for (const auto& [name, unit] :
+         {std::pair{"time_s", TimeUnit::kSecond}, std::pair{"time_ms", TimeUnit::kMillisecond},
+          std::pair{"time_us", TimeUnit::kMicrosecond},
+          std::pair{"time_ns", TimeUnit::kNanosecond}}) {
+      const auto found = reader.find_column(name);
+      if (found && *found != column) {
+        time_column = found;
+        time_factor = si_factor(unit);
+        time_name = name;
+        break;
+      }
+    }
+  }
+  std::vector<ColumnRequest> requests{{column, false}};
+  // Stamps relative to the first keep their digits (e.g. ns since the epoch beyond 2^53).
+  if (time_column) requests.push_back({*time_column, true});
+  TableData data = reader.read(requests, options.drop_non_finite);
   Series series;
+  if (time_column) {
+    series.time_column = time_name;
+    series.time_s = std::move(data.columns[1]);
+    for (double& t : series.time_s) t *= time_factor;
+  }
   series.source_path = path;
   series.column_name = layout.has_header() && !layout.column_names[column].empty()
                            ? layout.column_names[column]

@@ -102,6 +102,9 @@ struct SeriesReadOptions {
   std::string column;  ///< name, 1-based index, or empty = the only column
   bool drop_non_finite = false;
   Delimiter delimiter = Delimiter::kAuto;
+  /// Also read the time column, if the header names one (time_s, time_ms, time_us, time_ns),
+  /// converted to seconds relative to the first stamp.
+  bool read_time = false;
 };
 
 struct Series {
@@ -110,6 +113,8 @@ struct Series {
   std::vector<double> values;
   std::int64_t non_finite_dropped = 0;
   std::int64_t first_data_line = 0;
+  std::string time_column;     ///< name of the time column read (empty: none)
+  std::vector<double> time_s;  ///< its stamps [s] relative to the first (rows as `values`)
 };
 
 /// Reads one numeric column. With several columns and no `column`, the InputError lists them.

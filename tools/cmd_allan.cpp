@@ -14,6 +14,7 @@
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
 #include "io/csv_reader.h"
+#include "io/sampling_report.h"
 #include "tools/commands.h"
 
 namespace imunoise::tools {
@@ -32,11 +33,13 @@ struct AllanArgs {
   bool json = false;
   bool drop_non_finite = false;
   unsigned threads = 0;
+  CLI::Option* tau0_option = nullptr;  // to tell a given --tau0 from the default
 };
 
 void run_allan(const AllanArgs& args) {
   const auto type = analysis::parse_deviation_type(args.type);
   if (!type) throw InputError("unknown --type '" + args.type + "'");
+  const bool tau0_given = args.tau0_option != nullptr && args.tau0_option->count() > 0;
   if (!(args.tau0_s > 0.0) || !std::isfinite(args.tau0_s)) {
     throw InputError("--tau0 must be a positive number of seconds");
   }
@@ -45,7 +48,30 @@ void run_allan(const AllanArgs& args) {
   io::SeriesReadOptions read_options;
   read_options.column = args.column;
   read_options.drop_non_finite = args.drop_non_finite;
+  read_options.read_time = !tau0_given;
   const io::Series series = io::read_series(args.file, read_options);
+
+  // τ0: --tau0, else the median interval of the file's time column, else 1 s — and say which.
+  double tau0_s = args.tau0_s;
+  std::string tau0_source = tau0_given ? "--tau0" : "default (no --tau0, no time column)";
+  if (!tau0_given && series.time_s.size() >= 2) {
+    const io::TimingReport timing = io::analyze_timing(series.time_s);
+    if (!(timing.median_interval_s > 0.0)) {
+      throw InputError(located_message(
+          args.file, 0, 0,
+          "time column '" + series.time_column + "' has no positive interval; give --tau0"));
+    }
+    tau0_s = timing.median_interval_s;
+    tau0_source = "median interval of time column '" + series.time_column + "'";
+    // The estimators assume uniform sampling: say so when the stamps disagree.
+    if (timing.gap_count > 0 || timing.non_monotonic_count > 0 || timing.duplicate_count > 0) {
+      std::cerr << fmt::format(
+          "imunoise: warning: {}: time column '{}' shows {} gap(s), {} non-monotonic and {} "
+          "duplicate stamp(s); deviations assume uniform sampling (see 'imunoise check')\n",
+          args.file, series.time_column, timing.gap_count, timing.non_monotonic_count,
+          timing.duplicate_count);
+    }
+  }
 
   const bool is_phase = args.data == "phase";
   const std::size_t needed = is_phase ? 2 : 1;
@@ -55,9 +81,8 @@ void run_allan(const AllanArgs& args) {
                                             " value(s) in column '" + series.column_name + "'"));
   }
   // SI inside means: the phase is the integral of the input in input-unit·s.
-  const std::vector<double> phase = is_phase
-                                        ? analysis::detrended_phase(series.values)
-                                        : analysis::phase_from_rate(series.values, args.tau0_s);
+  const std::vector<double> phase = is_phase ? analysis::detrended_phase(series.values)
+                                             : analysis::phase_from_rate(series.values, tau0_s);
   std::vector<std::int64_t> factors;
   try {
     factors = analysis::averaging_factors(grid, *type, static_cast<std::int64_t>(phase.size()));
@@ -71,7 +96,7 @@ void run_allan(const AllanArgs& args) {
   if (args.alpha != 99) options.alpha = args.alpha;
   options.threads = args.threads;
   const analysis::DeviationCurve curve =
-      analysis::compute_deviation(phase, args.tau0_s, factors, options);
+      analysis::compute_deviation(phase, tau0_s, factors, options);
 
   if (args.json) {
     nlohmann::ordered_json out;
@@ -80,6 +105,7 @@ void run_allan(const AllanArgs& args) {
     out["tau0_s"] = curve.tau0_s;
     out["n_samples"] = series.values.size();
     out["confidence"] = curve.confidence;
+    out["tau0_source"] = tau0_source;
     out["source"] = args.file;
     out["column"] = series.column_name;
     out["n_phase"] = curve.n_phase;
@@ -101,10 +127,10 @@ void run_allan(const AllanArgs& args) {
     return;
   }
   std::cout << fmt::format(
-      "# {} of {} column '{}' ({} data, tau0 = {} s, {} samples, {} phase points)\n"
+      "# {} of {} column '{}' ({} data, tau0 = {} s from {}, {} samples, {} phase points)\n"
       "# confidence interval: {:.1f} % two-sided chi-square, EDF {}{}\n",
-      analysis::to_string(curve.type), args.file, series.column_name, args.data, args.tau0_s,
-      series.values.size(), curve.n_phase, 100.0 * curve.confidence,
+      analysis::to_string(curve.type), args.file, series.column_name, args.data, tau0_s,
+      tau0_source, series.values.size(), curve.n_phase, 100.0 * curve.confidence,
       curve.type == analysis::DeviationType::totdev ? "of SP 1065 (TOTDEV)" : "by Greenhall-Riley",
       options.alpha ? fmt::format(", alpha fixed at {}", *options.alpha)
                     : ", alpha identified per tau (lag-1 ACF)");
@@ -141,7 +167,11 @@ void register_allan_command(CLI::App& app) {
   cmd->add_option("--data", args->data, "the series is rate ('frequency') or integrated ('phase')")
       ->check(CLI::IsMember({"rate", "phase"}))
       ->capture_default_str();
-  cmd->add_option("--tau0", args->tau0_s, "sample period in seconds")->capture_default_str();
+  args->tau0_option =
+      cmd->add_option("--tau0", args->tau0_s,
+                      "sample period [s]; default: median interval of a time_s/time_ms/time_us/"
+                      "time_ns column, else 1")
+          ->capture_default_str();
   cmd->add_option("--type", args->type, "statistic")
       ->check(CLI::IsMember({"adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev"}))
       ->capture_default_str();

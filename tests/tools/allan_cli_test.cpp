@@ -133,3 +133,47 @@ TEST(AllanCli, EmptyFileIsAClearError) {
 
 }  // namespace
 }  // namespace imunoise::test
+
+namespace imunoise::test {
+namespace {
+
+TEST(AllanCli, Tau0ComesFromTheTimeColumnWhenNotGiven) {
+  const auto dir = make_temp_dir("allan");
+  const auto file = dir / "rec.csv";
+  std::string text = "time_ms,gyro_x_rad_per_s\n";
+  for (int i = 0; i < 200; ++i) {
+    text += std::to_string(1000 + 10 * i) + "," + std::to_string((i * 7919) % 13 - 6) + "\n";
+  }
+  write_text(file, text);
+  const auto r = run_imunoise("allan '" + file.string() + "' --column gyro_x_rad_per_s --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["tau0_s"].get<double>(), 0.01, 1e-15);  // 10 ms stamps, scaled to s
+  EXPECT_THAT(j["tau0_source"].get<std::string>(), HasSubstr("time_ms"));
+  EXPECT_NEAR(j["points"][1]["tau_s"].get<double>(), 0.02, 1e-15);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  // An explicit --tau0 wins over the time column.
+  const auto given =
+      run_imunoise("allan '" + file.string() + "' --column gyro_x_rad_per_s --tau0 2 --json");
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_EQ(nlohmann::json::parse(given.out)["tau0_s"], 2.0);
+}
+
+TEST(AllanCli, GapsInTheTimeColumnAreWarnedAbout) {
+  const auto dir = make_temp_dir("allan");
+  const auto file = dir / "gappy.csv";
+  std::string text = "time_s,y\n";
+  for (int i = 0; i < 100; ++i) {
+    const double t = i < 50 ? i * 0.5 : i * 0.5 + 10.0;  // one 10.5 s interval
+    text += std::to_string(t) + "," + std::to_string(i % 7) + "\n";
+  }
+  write_text(file, text);
+  const auto r = run_imunoise("allan '" + file.string() + "' --column y --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(r.out)["tau0_s"].get<double>(), 0.5);
+  EXPECT_THAT(r.err, HasSubstr("1 gap(s)"));
+  EXPECT_THAT(r.err, HasSubstr("uniform sampling"));
+}
+
+}  // namespace
+}  // namespace imunoise::test
