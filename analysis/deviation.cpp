@@ -8,8 +8,10 @@
 
 #include "analysis/confidence.h"
 #include "analysis/edf.h"
+#include "analysis/extra_deviations.h"
 #include "analysis/noise_id.h"
 #include "analysis/tau_grid.h"
+#include "analysis/total_family.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
@@ -226,6 +228,12 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
       out.variance = total_sum(x, M, m) / (2.0 * tau * tau * nn);
       break;
     }
+    case DeviationType::mtotdev:
+    case DeviationType::ttotdev:
+    case DeviationType::htotdev:
+      return total_family_variance(*total_family_type(type), phase, m, tau0_s);
+    case DeviationType::theo1:
+      return theo1_variance(phase, m, tau0_s);
   }
   return out;
 }
@@ -252,15 +260,22 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
 
   auto compute_point = [&](std::size_t i) {
     const std::int64_t m = averaging_factors[i];
-    const VarianceEstimate v = allan_family_variance(options.type, phase, m, tau0_s);
+    VarianceEstimate v = allan_family_variance(options.type, phase, m, tau0_s);
     DeviationPoint& p = curve.points[i];
     p.m = m;
-    p.tau_s = static_cast<double>(m) * tau0_s;
-    p.value = std::sqrt(std::max(v.variance, 0.0));
-    p.n_terms = v.n_terms;
+    p.tau_s = tau_of(options.type, m, tau0_s);
     // A constant signal has no noise type; white FM is the neutral choice for its EDF.
     p.alpha = options.alpha ? *options.alpha
                             : (v.variance > 0.0 ? noise_alpha_for(options.type, phase, m) : 0);
+    if (options.bias_corrected && v.variance > 0.0) {
+      if (const auto family = total_family_type(options.type)) {
+        v = total_family_variance(*family, phase, m, tau0_s, true, p.alpha);
+      } else if (options.type == DeviationType::theo1) {
+        v = theo1_variance(phase, m, tau0_s, true, p.alpha);
+      }
+    }
+    p.value = std::sqrt(std::max(v.variance, 0.0));
+    p.n_terms = v.n_terms;
     p.edf = edf_for(options.type, p.alpha, m, curve.n_phase);
     const DeviationInterval ci = deviation_interval(p.value, p.edf, options.confidence);
     p.ci_low = ci.low;

@@ -39,7 +39,7 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
 /// One point of a deviation curve.
 struct DeviationPoint {
   std::int64_t m = 0;        ///< averaging factor
-  double tau_s = 0.0;        ///< τ = m·τ0 [s]
+  double tau_s = 0.0;        ///< τ = m·τ0 [s] (Thêo1: 0.75·m·τ0) (Thêo1: 0.75·m·τ0)
   double value = 0.0;        ///< the deviation (not the variance), input unit (TDEV: phase unit)
   std::int64_t n_terms = 0;  ///< number of terms in the estimator sum
   int alpha = 0;             ///< power-law exponent of S_y(f) used for the EDF
@@ -54,6 +54,9 @@ struct DeviationOptions {
   double confidence = 0.683;  ///< two-sided confidence level of [ci_low, ci_high]
   std::optional<int> alpha;   ///< force the noise type (else identified per τ, §3.4)
   unsigned threads = 0;       ///< worker threads across τ (0 = all cores)
+  /// MTOTDEV, TTOTDEV, HTOTDEV, Thêo1: apply the SP 1065 bias removal for the per-τ alpha
+  /// (Stable32's "bias correction"); ignored by the other statistics.
+  bool bias_corrected = false;
 };
 
 /// A deviation curve with confidence intervals.

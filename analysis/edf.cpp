@@ -13,6 +13,8 @@
 #include <limits>
 #include <string>
 
+#include "analysis/extra_deviations.h"
+#include "analysis/total_family.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
@@ -320,6 +322,12 @@ double edf_for(DeviationType type, int alpha, std::int64_t m, std::int64_t n_pha
       return edf_greenhall(alpha, 3, m, n_phase, true, false);
     case DeviationType::totdev:
       return edf_totdev(alpha, m, n_phase);
+    case DeviationType::mtotdev:
+    case DeviationType::ttotdev:
+    case DeviationType::htotdev:
+      return total_family_edf(*total_family_type(type), alpha, m, n_phase);
+    case DeviationType::theo1:
+      return theo1_edf(alpha, m, n_phase);
   }
   throw AnalysisError("edf_for: unknown deviation type");
 }

@@ -117,12 +117,16 @@ AlphaRange supported_alpha_range(DeviationType type) {
   switch (type) {
     case DeviationType::hdev:
     case DeviationType::ohdev:
+    case DeviationType::htotdev:
       return {-4, 2};  // d = 3: alpha + 6 > 1
     case DeviationType::adev:
     case DeviationType::oadev:
     case DeviationType::mdev:
     case DeviationType::tdev:
     case DeviationType::totdev:
+    case DeviationType::mtotdev:
+    case DeviationType::ttotdev:
+    case DeviationType::theo1:
       break;
   }
   return {-2, 2};  // d = 2: alpha + 4 > 1

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "analysis/total_family.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
@@ -25,6 +26,16 @@ std::int64_t parse_positive_integer(std::string_view token, std::string_view who
 
 // Cost guard for the O(M) per τ kernels: 'all' on a long record would run for hours.
 constexpr double kMaxAllGridWork = 2e10;
+// Cost guard for the O(M·m) estimators (total family, Thêo1): ~1 ns per inner operation,
+// so 3e10 operations is about half a minute.
+constexpr double kMaxQuadraticWork = 3e10;
+
+/// Inner operations of one τ of an O(M·m) estimator: windows × work per window (the total
+/// family detrends and reflects 9m points per window; Thêo1 sums m/2 lags per term).
+double quadratic_work(DeviationType type, std::int64_t n_phase, std::int64_t m) {
+  const double n = static_cast<double>(estimator_term_count(type, n_phase, m));
+  return type == DeviationType::theo1 ? n : 9.0 * n * static_cast<double>(m);
+}
 
 }  // namespace
 
@@ -82,6 +93,17 @@ std::int64_t estimator_term_count(DeviationType type, std::int64_t n_phase, std:
     case DeviationType::ohdev:
       n = M - 3 * m;
       break;
+    case DeviationType::mtotdev:
+    case DeviationType::ttotdev:
+    case DeviationType::htotdev:
+      n = m <= total_family_max_m(*total_family_type(type), M)
+              ? total_family_term_count(*total_family_type(type), M, m)
+              : 0;
+      break;
+    case DeviationType::theo1:
+      // SP 1065 eq. 30: (M − m) positions × m/2 lags; m even, m ≤ M − 1.
+      n = (m % 2 == 0 && m <= M - 1) ? (M - m) * (m / 2) : 0;
+      break;
     case DeviationType::totdev:
       // The reflected extension provides neighbours for every interior point, but it is only
       // defined for m ≤ M − 2 (theory.md §2, reflection j = 1..M−2).
@@ -93,7 +115,9 @@ std::int64_t estimator_term_count(DeviationType type, std::int64_t n_phase, std:
 
 std::int64_t max_averaging_factor(DeviationType type, std::int64_t n_phase) {
   std::int64_t m = n_phase / stop_ratio(type);
-  while (m >= 1 && estimator_term_count(type, n_phase, m) < 1) --m;
+  if (type == DeviationType::theo1) m -= m % 2;  // Thêo1 needs even m
+  while (m >= 1 && estimator_term_count(type, n_phase, m) < 1)
+    m -= type == DeviationType::theo1 ? 2 : 1;
   return std::max<std::int64_t>(m, 0);
 }
 
@@ -142,6 +166,10 @@ std::vector<std::int64_t> averaging_factors(const TauGridSpec& spec, DeviationTy
     }
     case TauGridSpec::Kind::explicit_list:
       for (std::int64_t m : spec.factors) {
+        if (type == DeviationType::theo1 && m % 2 != 0) {
+          throw AnalysisError("theo1 needs even averaging factors (tau = 0.75·m·tau0); got m = " +
+                              std::to_string(m));
+        }
         if (m > max_m) {
           throw AnalysisError("too few samples for the requested tau: m = " + std::to_string(m) +
                               " needs at least " + std::to_string(m * stop_ratio(type)) +
@@ -153,6 +181,26 @@ std::vector<std::int64_t> averaging_factors(const TauGridSpec& spec, DeviationTy
         out.push_back(m);
       }
       break;
+  }
+  if (type == DeviationType::theo1) {
+    // Thêo1 is defined for even m only: move odd grid points up to the next even factor.
+    std::vector<std::int64_t> even;
+    for (std::int64_t m : out) {
+      const std::int64_t e = m + (m % 2);
+      if (e <= max_m && (even.empty() || even.back() != e)) even.push_back(e);
+    }
+    out = std::move(even);
+  }
+  if (cost_grows_with_m(type)) {
+    double work = 0.0;
+    for (std::int64_t m : out) work += quadratic_work(type, n_phase, m);
+    if (work > kMaxQuadraticWork) {
+      throw AnalysisError(std::string(to_string(type)) + " costs O(M·m) per tau: this grid on " +
+                          std::to_string(n_phase) + " samples needs about " +
+                          std::to_string(static_cast<long long>(work / 1e9)) +
+                          "e9 operations (limit 30e9); use fewer or smaller averaging factors "
+                          "(an explicit list) or a shorter record");
+    }
   }
   return out;
 }

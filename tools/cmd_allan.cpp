@@ -32,9 +32,28 @@ struct AllanArgs {
   int alpha = 99;  // 99 = identify per τ
   bool json = false;
   bool drop_non_finite = false;
+  bool bias_corrected = false;
   unsigned threads = 0;
   CLI::Option* tau0_option = nullptr;  // to tell a given --tau0 from the default
 };
+
+/// Which EDF model the interval uses, for the table header.
+const char* edf_model(analysis::DeviationType type) {
+  using analysis::DeviationType;
+  switch (type) {
+    case DeviationType::totdev:
+      return "of SP 1065 (TOTDEV)";
+    case DeviationType::mtotdev:
+    case DeviationType::ttotdev:
+      return "of SP 1065 Table 8 (MTOT)";
+    case DeviationType::htotdev:
+      return "by Greenhall-Riley (OHDEV model)";
+    case DeviationType::theo1:
+      return "of SP 1065 (Theo1)";
+    default:
+      return "by Greenhall-Riley";
+  }
+}
 
 void run_allan(const AllanArgs& args) {
   const auto type = analysis::parse_deviation_type(args.type);
@@ -95,6 +114,7 @@ void run_allan(const AllanArgs& args) {
   options.confidence = args.confidence;
   if (args.alpha != 99) options.alpha = args.alpha;
   options.threads = args.threads;
+  options.bias_corrected = args.bias_corrected;
   const analysis::DeviationCurve curve =
       analysis::compute_deviation(phase, tau0_s, factors, options);
 
@@ -110,8 +130,10 @@ void run_allan(const AllanArgs& args) {
     out["column"] = series.column_name;
     out["n_phase"] = curve.n_phase;
     out["non_finite_dropped"] = series.non_finite_dropped;
-    out["value_unit"] =
-        curve.type == analysis::DeviationType::tdev ? "input unit * s" : "input unit";
+    const bool time_statistic = curve.type == analysis::DeviationType::tdev ||
+                                curve.type == analysis::DeviationType::ttotdev;
+    out["value_unit"] = time_statistic ? "input unit * s" : "input unit";
+    out["bias_corrected"] = options.bias_corrected && analysis::cost_grows_with_m(curve.type);
     auto& points = out["points"] = nlohmann::ordered_json::array();
     for (const auto& p : curve.points) {
       points.push_back({{"m", p.m},
@@ -131,7 +153,7 @@ void run_allan(const AllanArgs& args) {
       "# confidence interval: {:.1f} % two-sided chi-square, EDF {}{}\n",
       analysis::to_string(curve.type), args.file, series.column_name, args.data, tau0_s,
       tau0_source, series.values.size(), curve.n_phase, 100.0 * curve.confidence,
-      curve.type == analysis::DeviationType::totdev ? "of SP 1065 (TOTDEV)" : "by Greenhall-Riley",
+      edf_model(curve.type),
       options.alpha ? fmt::format(", alpha fixed at {}", *options.alpha)
                     : ", alpha identified per tau (lag-1 ACF)");
   if (series.non_finite_dropped > 0) {
@@ -152,14 +174,16 @@ void register_allan_command(CLI::App& app) {
   auto args = std::make_shared<AllanArgs>();
   CLI::App* cmd = app.add_subcommand(
       "allan",
-      "Allan-family deviation of one series (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV)");
+      "Allan-family deviation of one series (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV, "
+      "MTOTDEV, TTOTDEV, HTOTDEV, Theo1)");
   cmd->footer(
       "Examples:\n"
       "  imunoise allan gyro_x.txt --tau0 0.01 --type oadev --taus log:10\n"
       "  imunoise allan PHASE.DAT --data phase --type mdev --taus octave --json\n"
       "  imunoise allan rec.csv --column gyro_z_rad_per_s --tau0 0.0025 --taus decade\n"
       "Values are in the unit of the input (rate data) or input unit per second (phase data);\n"
-      "TDEV is in phase units.");
+      "TDEV and TTOTDEV are in phase units. mtotdev, ttotdev, htotdev and theo1 cost O(M*m)\n"
+      "per tau; theo1 uses even m with tau = 0.75*m*tau0.");
   cmd->add_option("file", args->file, "CSV/TXT file: one value per line, or columns (see --column)")
       ->required();
   cmd->add_option("--column", args->column,
@@ -173,7 +197,8 @@ void register_allan_command(CLI::App& app) {
                       "time_ns column, else 1")
           ->capture_default_str();
   cmd->add_option("--type", args->type, "statistic")
-      ->check(CLI::IsMember({"adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev"}))
+      ->check(CLI::IsMember({"adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev", "mtotdev",
+                             "ttotdev", "htotdev", "theo1"}))
       ->capture_default_str();
   cmd->add_option("--taus", args->taus, "tau grid: octave, decade, all, log:N, or m1,m2,...")
       ->capture_default_str();
@@ -185,6 +210,9 @@ void register_allan_command(CLI::App& app) {
                   "default: identified per tau")
       ->check(CLI::Range(-4, 2));
   cmd->add_flag("--json", args->json, "print exactly one JSON object on stdout");
+  cmd->add_flag("--bias-correction", args->bias_corrected,
+                "mtotdev, ttotdev, htotdev, theo1: apply the SP 1065 bias removal for the "
+                "per-tau noise type (default: plain estimator, as Stable32 without correction)");
   cmd->add_flag("--drop-non-finite", args->drop_non_finite,
                 "drop NaN/Inf values instead of failing (the count is reported)");
   cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)")

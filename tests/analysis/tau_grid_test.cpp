@@ -81,5 +81,28 @@ TEST(TauGrid, TermCountsFollowEstimatorDefinitions) {
   EXPECT_EQ(estimator_term_count(DeviationType::totdev, 1001, 499), 999);
 }
 
+TEST(TauGrid, Theo1GridsUseEvenFactorsUpToMMinusOne) {
+  // Stable32's PHASE.DAT Thêo1 table (M = 1001) runs to AF 998; m ≤ M − 1 and even.
+  EXPECT_EQ(max_averaging_factor(DeviationType::theo1, 1001), 1000);
+  EXPECT_EQ(max_averaging_factor(DeviationType::theo1, 1000), 998);
+  EXPECT_THAT(averaging_factors(parse_tau_grid("decade"), DeviationType::theo1, 1001),
+              ElementsAre(2, 4, 10, 20, 40, 100, 200, 400, 1000));
+  EXPECT_THAT(averaging_factors(parse_tau_grid("octave"), DeviationType::theo1, 100),
+              ElementsAre(2, 4, 8, 16, 32, 64));
+  EXPECT_THROW(averaging_factors(parse_tau_grid("2,3"), DeviationType::theo1, 100), AnalysisError);
+}
+
+TEST(TauGrid, TotalFamilyStopsAtOneThird) {
+  EXPECT_EQ(max_averaging_factor(DeviationType::mtotdev, 1001), 333);
+  EXPECT_EQ(max_averaging_factor(DeviationType::htotdev, 1001), 333);
+  EXPECT_EQ(estimator_term_count(DeviationType::mtotdev, 1001, 332), 6);
+}
+
+TEST(TauGrid, QuadraticCostStatisticsRefuseHugeWork) {
+  EXPECT_THROW(averaging_factors(parse_tau_grid("log:10"), DeviationType::mtotdev, 1'000'000),
+               AnalysisError);
+  EXPECT_NO_THROW(averaging_factors(parse_tau_grid("1,10,100"), DeviationType::mtotdev, 1'000'000));
+}
+
 }  // namespace
 }  // namespace imunoise::analysis

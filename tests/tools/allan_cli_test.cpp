@@ -177,3 +177,56 @@ TEST(AllanCli, GapsInTheTimeColumnAreWarnedAbout) {
 
 }  // namespace
 }  // namespace imunoise::test
+
+namespace imunoise::test {
+namespace {
+
+// SP 1065 published MTOTDEV with bias correction for the NBS14 set: 2.418528e-01 (m=1),
+// 6.499161e-02 (m=10), 2.287774e-02 (m=100); the CLI path with --bias-correction and the
+// white-FM alpha reproduces them.
+TEST(AllanCli, BiasCorrectedMtotdevMatchesSp1065) {
+  IMUNOISE_REQUIRE_REFERENCE_DATA(data);
+  const auto r =
+      run_imunoise("allan '" + (data / "nist-sp1065-nbs" / "nbs14_1000_phase.csv").string() +
+                   "' --column x --data phase --type mtotdev --taus 1,10,100 --bias-correction "
+                   "--alpha 0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["bias_corrected"], true);
+  const double published[] = {2.418528e-01, 6.499161e-02, 2.287774e-02};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(j["points"][i]["value"].get<double>() / published[i], 1.0, 5e-7);
+  }
+}
+
+TEST(AllanCli, Theo1UsesEvenFactorsAndThreeQuarterTau) {
+  const auto dir = make_temp_dir("allan");
+  const auto file = dir / "y.txt";
+  std::string text;
+  for (int i = 0; i < 400; ++i) text += std::to_string((i * 7919) % 101) + "\n";
+  write_text(file, text);
+  const auto r = run_imunoise("allan '" + file.string() + "' --type theo1 --taus decade --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const auto& p : j["points"]) {
+    EXPECT_EQ(p["m"].get<int>() % 2, 0);
+    EXPECT_DOUBLE_EQ(p["tau_s"].get<double>(), 0.75 * p["m"].get<double>());
+  }
+  const auto odd = run_imunoise("allan '" + file.string() + "' --type theo1 --taus 3");
+  EXPECT_EQ(odd.exit_code, 3);
+  EXPECT_THAT(odd.err, HasSubstr("even"));
+}
+
+TEST(AllanCli, QuadraticCostStatisticsRefuseHugeGridsInsteadOfHanging) {
+  const auto dir = make_temp_dir("allan");
+  const auto file = dir / "long.txt";
+  std::string text;
+  for (int i = 0; i < 300000; ++i) text += std::to_string(i % 13) + "\n";
+  write_text(file, text);
+  const auto r = run_imunoise("allan '" + file.string() + "' --type mtotdev --taus log:10");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_THAT(r.err, HasSubstr("O(M·m)"));
+}
+
+}  // namespace
+}  // namespace imunoise::test
