@@ -9,6 +9,7 @@
 #include "analysis/confidence.h"
 #include "analysis/edf.h"
 #include "analysis/extra_deviations.h"
+#include "analysis/kernel_support.h"
 #include "analysis/noise_id.h"
 #include "analysis/tau_grid.h"
 #include "analysis/total_family.h"
@@ -18,34 +19,8 @@ namespace imunoise::analysis {
 
 namespace {
 
-/// Neumaier (improved Kahan) accumulator: the running error term keeps the sum exact to
-/// about one rounding of the result however many blocks are added (theory.md §2 "Numerics").
-struct CompensatedSum {
-  double sum = 0.0;
-  double carry = 0.0;
-  void add(double v) {
-    const double t = sum + v;
-    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + carry; }
-};
-
-/// Σ_{k<n} term(k): plain (vectorisable) sums over short blocks, blocks added with
-/// compensation. Error ≈ kBlock·ε relative instead of n·ε: full precision at 10^8 terms.
-template <class Term>
-double blocked_sum(std::int64_t n, Term&& term) {
-  constexpr std::int64_t kBlock = 2048;
-  CompensatedSum total;
-  for (std::int64_t start = 0; start < n; start += kBlock) {
-    const std::int64_t end = std::min(n, start + kBlock);
-    double block = 0.0;
-#pragma omp simd reduction(+ : block)
-    for (std::int64_t k = start; k < end; ++k) block += term(k);
-    total.add(block);
-  }
-  return total.value();
-}
+using detail::blocked_sum;
+using detail::CompensatedSum;
 
 // Second difference x_{k+2m} − 2x_{k+m} + x_k (Allan) and third difference (Hadamard).
 inline double second_difference(const double* x, std::int64_t k, std::int64_t m) {
@@ -172,8 +147,7 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
                                        std::int64_t m, double tau0_s) {
   const auto M = static_cast<std::int64_t>(phase.size());
   IMUNOISE_CHECK(m >= 1, AnalysisError, "averaging factor must be >= 1, got " + std::to_string(m));
-  IMUNOISE_CHECK(tau0_s > 0.0 && std::isfinite(tau0_s), AnalysisError,
-                 "sample period tau0 must be positive and finite");
+  detail::check_sample_period(tau0_s);
   const std::int64_t n = estimator_term_count(type, M, m);
   IMUNOISE_CHECK(n >= 1, AnalysisError,
                  "too few samples for " + std::string(to_string(type)) + " at m = " +

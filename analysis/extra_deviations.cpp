@@ -4,43 +4,15 @@
 #include <cmath>
 #include <string>
 
+#include "analysis/kernel_support.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
 
 namespace {
 
-/// Neumaier accumulator (same scheme as deviation.cpp, whose helpers are file-local).
-struct CompensatedSum {
-  double sum = 0.0;
-  double carry = 0.0;
-  void add(double v) {
-    const double t = sum + v;
-    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + carry; }
-};
-
-/// Σ_{k<n} term(k): plain sums over blocks of 2048, blocks added with compensation
-/// (relative error ≈ 2048·ε however long the record).
-template <class Term>
-double blocked_sum(std::int64_t n, Term&& term) {
-  constexpr std::int64_t kBlock = 2048;
-  CompensatedSum total;
-  for (std::int64_t start = 0; start < n; start += kBlock) {
-    const std::int64_t end = std::min(n, start + kBlock);
-    double block = 0.0;
-    for (std::int64_t k = start; k < end; ++k) block += term(k);
-    total.add(block);
-  }
-  return total.value();
-}
-
-void check_tau0(double tau0_s) {
-  IMUNOISE_CHECK(tau0_s > 0.0 && std::isfinite(tau0_s), AnalysisError,
-                 "sample period tau0 must be positive and finite, got " + std::to_string(tau0_s));
-}
+using detail::blocked_sum;
+using detail::CompensatedSum;
 
 /// Σ_{i<n} Σ_{j=1}^{h} (1/j)·[(x_i − x_{i+j}) + (x_{i+m} − x_{i+m−j})]², n = M − m, h = m/2.
 ///
@@ -114,7 +86,7 @@ VarianceEstimate theo1_variance(std::span<const double> phase, std::int64_t m, d
   IMUNOISE_CHECK(m <= M - 1, AnalysisError,
                  "theo1: averaging factor " + std::to_string(m) + " needs at least " +
                      std::to_string(m + 1) + " phase samples, got " + std::to_string(M));
-  check_tau0(tau0_s);
+  detail::check_sample_period(tau0_s);
   IMUNOISE_CHECK(alpha >= -2 && alpha <= 2, AnalysisError,
                  "theo1: noise exponent alpha must be in -2..2, got " + std::to_string(alpha));
   const std::int64_t n = M - m;
@@ -185,7 +157,7 @@ VarianceEstimate parabolic_variance(std::span<const double> phase, std::int64_t 
   const auto M = static_cast<std::int64_t>(phase.size());
   IMUNOISE_CHECK(m >= 1, AnalysisError,
                  "pdev: averaging factor must be >= 1, got " + std::to_string(m));
-  check_tau0(tau0_s);
+  detail::check_sample_period(tau0_s);
   IMUNOISE_CHECK(M - 2 * m >= 1, AnalysisError,
                  "pdev: too few samples at m = " + std::to_string(m) + ": " + std::to_string(M) +
                      " phase samples give no term (need >= " + std::to_string(2 * m + 1) + ")");
@@ -205,7 +177,7 @@ VarianceEstimate sample_variance_of_averages(std::span<const double> phase, std:
   const auto M = static_cast<std::int64_t>(phase.size());
   IMUNOISE_CHECK(m >= 1, AnalysisError,
                  "std dev: averaging factor must be >= 1, got " + std::to_string(m));
-  check_tau0(tau0_s);
+  detail::check_sample_period(tau0_s);
   const std::int64_t J = M >= 1 ? (M - 1) / m : 0;
   IMUNOISE_CHECK(J >= 2, AnalysisError,
                  "std dev: too few samples at m = " + std::to_string(m) + ": " + std::to_string(M) +

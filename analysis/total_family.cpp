@@ -6,23 +6,14 @@
 
 #include "analysis/deviation_type.h"
 #include "analysis/edf.h"
+#include "analysis/kernel_support.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
 
 namespace {
 
-/// Neumaier accumulator (as in deviation.cpp): the sum over runs keeps full precision.
-struct CompensatedSum {
-  double sum = 0.0;
-  double carry = 0.0;
-  void add(double v) {
-    const double t = sum + v;
-    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + carry; }
-};
+using detail::CompensatedSum;
 
 /// Mean over one run of 3m samples w_0 … w_{3m−1} (phase for MTOT, frequency for HTOT) of the
 /// 6m squared second differences of m-point averages of its 9m-point reflected extension
@@ -151,8 +142,7 @@ VarianceEstimate total_family_variance(TotalFamilyType type, std::span<const dou
   const std::string where = std::string("total_family_variance(") + name_of(type) + "): ";
   IMUNOISE_CHECK(m >= 1, AnalysisError,
                  where + "averaging factor must be >= 1, got " + std::to_string(m));
-  IMUNOISE_CHECK(tau0_s > 0.0 && std::isfinite(tau0_s), AnalysisError,
-                 where + "tau0 must be positive and finite");
+  detail::check_sample_period(tau0_s, where);
   const auto n_phase = static_cast<std::int64_t>(phase.size());
   const std::int64_t terms = total_family_term_count(type, n_phase, m);
   IMUNOISE_CHECK(terms >= 1 && m <= total_family_max_m(type, n_phase), AnalysisError,

@@ -1,0 +1,52 @@
+/// @file
+/// @brief Internal helpers shared by the deviation kernels (deviation.cpp, total_family.cpp,
+/// extra_deviations.cpp): compensated summation and the sample-period check. Not part of
+/// the public analysis API.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "common/errors.h"
+
+namespace imunoise::analysis::detail {
+
+/// Neumaier (improved Kahan) accumulator: the running error term keeps the sum exact to
+/// about one rounding of the result however many values are added (theory.md §2 "Numerics").
+struct CompensatedSum {
+  double sum = 0.0;
+  double carry = 0.0;
+  void add(double v) {
+    const double t = sum + v;
+    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
+    sum = t;
+  }
+  double value() const { return sum + carry; }
+};
+
+/// Σ_{k<n} term(k): plain (vectorisable) sums over short blocks, blocks added with
+/// compensation. Error ≈ kBlock·ε relative instead of n·ε: full precision at 10^8 terms.
+template <class Term>
+double blocked_sum(std::int64_t n, Term&& term) {
+  constexpr std::int64_t kBlock = 2048;
+  CompensatedSum total;
+  for (std::int64_t start = 0; start < n; start += kBlock) {
+    const std::int64_t end = std::min(n, start + kBlock);
+    double block = 0.0;
+#pragma omp simd reduction(+ : block)
+    for (std::int64_t k = start; k < end; ++k) block += term(k);
+    total.add(block);
+  }
+  return total.value();
+}
+
+/// Throws AnalysisError "<where>sample period tau0 must be positive and finite, got …".
+inline void check_sample_period(double tau0_s, const std::string& where = "") {
+  IMUNOISE_CHECK(
+      tau0_s > 0.0 && std::isfinite(tau0_s), AnalysisError,
+      where + "sample period tau0 must be positive and finite, got " + std::to_string(tau0_s));
+}
+
+}  // namespace imunoise::analysis::detail
