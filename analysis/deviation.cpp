@@ -212,6 +212,25 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
   return out;
 }
 
+namespace {
+
+/// The variance of one curve point: the plain estimator, or for MTOTDEV, TTOTDEV, HTOTDEV and
+/// Thêo1 with options.bias_corrected, the SP 1065 bias-corrected one for noise type ALPHA.
+VarianceEstimate point_variance(const DeviationOptions& options, std::span<const double> phase,
+                                std::int64_t m, double tau0_s, int alpha) {
+  if (options.bias_corrected) {
+    if (const auto family = total_family_type(options.type)) {
+      return total_family_variance(*family, phase, m, tau0_s, true, alpha);
+    }
+    if (options.type == DeviationType::theo1) {
+      return theo1_variance(phase, m, tau0_s, true, alpha);
+    }
+  }
+  return allan_family_variance(options.type, phase, m, tau0_s);
+}
+
+}  // namespace
+
 DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
                                  std::span<const std::int64_t> averaging_factors,
                                  const DeviationOptions& options) {
@@ -234,20 +253,14 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
 
   auto compute_point = [&](std::size_t i) {
     const std::int64_t m = averaging_factors[i];
-    VarianceEstimate v = allan_family_variance(options.type, phase, m, tau0_s);
     DeviationPoint& p = curve.points[i];
     p.m = m;
     p.tau_s = tau_of(options.type, m, tau0_s);
-    // A constant signal has no noise type; white FM is the neutral choice for its EDF.
-    p.alpha = options.alpha ? *options.alpha
-                            : (v.variance > 0.0 ? noise_alpha_for(options.type, phase, m) : 0);
-    if (options.bias_corrected && v.variance > 0.0) {
-      if (const auto family = total_family_type(options.type)) {
-        v = total_family_variance(*family, phase, m, tau0_s, true, p.alpha);
-      } else if (options.type == DeviationType::theo1) {
-        v = theo1_variance(phase, m, tau0_s, true, p.alpha);
-      }
-    }
+    // The noise type comes first because the bias-corrected total family and Thêo1 need it,
+    // and those estimators cost O(M·m): each is evaluated once. A constant signal gives no
+    // identification and falls back to white FM (alpha 0), the neutral choice for its EDF.
+    p.alpha = options.alpha ? *options.alpha : noise_alpha_for(options.type, phase, m);
+    const VarianceEstimate v = point_variance(options, phase, m, tau0_s, p.alpha);
     p.value = std::sqrt(std::max(v.variance, 0.0));
     p.n_terms = v.n_terms;
     p.edf = edf_for(options.type, p.alpha, m, curve.n_phase);
