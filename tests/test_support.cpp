@@ -96,6 +96,18 @@ std::vector<std::vector<std::string>> read_csv_rows(const std::filesystem::path&
   return rows;
 }
 
+std::vector<double> nbs14_1000_frequency() {
+  std::vector<double> y;
+  std::int64_t n = 1234567890;
+  for (int i = 0; i < 1000; ++i) {
+    y.push_back(static_cast<double>(n) / 2147483647.0);
+    n = (16807 * n) % 2147483647;
+  }
+  return y;
+}
+
+std::vector<double> nbs9_frequency() { return {892, 809, 823, 798, 671, 644, 883, 903, 677}; }
+
 void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw std::runtime_error("cannot write test fixture " + path.string());

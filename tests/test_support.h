@@ -2,6 +2,8 @@
 /// @brief Shared helpers for the test suite: where the reference data and the CLI binary are.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -45,6 +47,24 @@ std::vector<double> read_number_lines(const std::filesystem::path& path);
 
 /// A CSV file as rows of fields (header row first); handles double-quoted fields.
 std::vector<std::vector<std::string>> read_csv_rows(const std::filesystem::path& path);
+
+/// The SP 1065 "NBS14" 1000-point fractional-frequency set, built from its published Lehmer
+/// generator: n_0 = 1234567890, n_{i+1} = 16807·n_i mod (2^31 − 1), y_i = n_i/(2^31 − 1).
+std::vector<double> nbs14_1000_frequency();
+
+/// The SP 1065 9-point frequency set: 892, 809, 823, 798, 671, 644, 883, 903, 677.
+std::vector<double> nbs9_frequency();
+
+/// Runs F and expects it to throw E whose what() contains FRAGMENT (a test failure otherwise).
+template <class E, class F>
+void expect_throw_containing(F&& f, const std::string& fragment) {
+  try {
+    f();
+    ADD_FAILURE() << "no exception thrown, expected one mentioning '" << fragment << "'";
+  } catch (const E& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
 
 /// Writes TEXT to PATH (test fixtures).
 void write_text(const std::filesystem::path& path, const std::string& text);

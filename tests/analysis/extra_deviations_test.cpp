@@ -16,18 +16,8 @@
 namespace imunoise::analysis {
 namespace {
 
-// SP 1065 test suite: n[0] = 1234567890, n[i+1] = 16807·n[i] mod (2^31 − 1), y = n/(2^31 − 1).
-std::vector<double> nbs14_1000_frequency() {
-  std::vector<double> y;
-  std::int64_t n = 1234567890;
-  for (int i = 0; i < 1000; ++i) {
-    y.push_back(static_cast<double>(n) / 2147483647.0);
-    n = (16807 * n) % 2147483647;
-  }
-  return y;
-}
-
-const std::vector<double> kNbs9Frequency = {892, 809, 823, 798, 671, 644, 883, 903, 677};
+using test::nbs14_1000_frequency;
+const std::vector<double> kNbs9Frequency = test::nbs9_frequency();
 
 /// Independent O(M·m) Thêo1 exactly as printed in SP 1065 eq. 30 (1-based i, δ), in long
 /// double: 1/(0.75(N−m)(mτ0)²) Σ_{i=1}^{N−m} Σ_{δ=0}^{m/2−1} [(x_i − x_{i−δ+m/2}) +
@@ -262,12 +252,7 @@ TEST(ExtraDeviations, Theo1EdfFollowsSp1065Formulas) {
 
 template <class F>
 void expect_analysis_error(F&& f, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no AnalysisError, expected one mentioning '" << fragment << "'";
-  } catch (const AnalysisError& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
+  test::expect_throw_containing<AnalysisError>(std::forward<F>(f), fragment);
 }
 
 TEST(ExtraDeviations, RejectsBadArguments) {

@@ -11,18 +11,8 @@
 namespace imunoise::analysis {
 namespace {
 
-// SP 1065: n[0] = 1234567890, n[i+1] = 16807·n[i] mod (2^31 − 1), y[i] = n[i]/(2^31 − 1).
-std::vector<double> nbs14_1000_frequency() {
-  std::vector<double> y;
-  std::int64_t n = 1234567890;
-  for (int i = 0; i < 1000; ++i) {
-    y.push_back(static_cast<double>(n) / 2147483647.0);
-    n = (16807 * n) % 2147483647;
-  }
-  return y;
-}
-
-const std::vector<double> kNbs9Frequency = {892, 809, 823, 798, 671, 644, 883, 903, 677};
+using test::nbs14_1000_frequency;
+const std::vector<double> kNbs9Frequency = test::nbs9_frequency();
 
 std::optional<DeviationType> type_of(const std::string& statistic) {
   static const std::map<std::string, DeviationType> kTypes = {
