@@ -25,8 +25,8 @@ constexpr std::uint32_t kQuantizationStream = 2;
 constexpr std::uint32_t kRandomWalkStream = 3;
 constexpr std::uint32_t kGaussMarkovStreamBase = 1000;
 constexpr std::uint32_t kFlickerStreamBase = 2000;
-/// Distinguishes this simulator's streams from any other user of the same seed ("imun").
-constexpr std::uint32_t kSalt = 0x696d756e;
+/// Distinguishes this simulator's streams from any other user of the same seed ("imunoise").
+constexpr std::uint64_t kSalt = 0x696d756e6f697365ULL;
 
 std::string number_text(double value) {
   char buffer[32];
@@ -48,10 +48,15 @@ void check_finite(double value, std::string_view where, std::string_view field) 
   }
 }
 
-std::mt19937_64 make_engine(std::uint64_t seed, std::uint32_t channel, std::uint32_t stream) {
-  std::seed_seq sequence{static_cast<std::uint32_t>(seed & 0xffffffffU),
-                         static_cast<std::uint32_t>(seed >> 32U), channel, stream, kSalt};
-  return std::mt19937_64(sequence);
+/// The xoshiro256++ stream of (seed, channel, stream). Key derivation: k1 = splitmix64 of
+/// (seed ⊕ salt), k2 = splitmix64 of (k1 ⊕ (channel·2³² + stream)); the engine state is four
+/// splitmix64 outputs from k2. Each splitmix64 step is a bijection of its input, so for one seed
+/// distinct (channel, stream) pairs get distinct keys and states. Streams start at unrelated
+/// points of the 2^256 − 1 cycle: two runs of 2^64 words overlap with probability ~2^−191.
+Xoshiro256PlusPlus make_engine(std::uint64_t seed, std::uint32_t channel, std::uint32_t stream) {
+  std::uint64_t state = seed ^ kSalt;
+  state = splitmix64(state) ^ ((static_cast<std::uint64_t>(channel) << 32U) | stream);
+  return Xoshiro256PlusPlus(splitmix64(state));
 }
 
 /// f(e) = e − 2(1 − e^{−e}) + (1 − e^{−2e})/2, the bracket of Var v below divided by T.
@@ -75,11 +80,17 @@ double averaged_ou_bracket(double e) {
 /// [0, r]×[0, f(r)] plus the tail x > r, drawn as the box [0, v/f(r)]×[0, f(r)]; layer i ≥ 1 is
 /// the box [0, w_i]×[f_i, f_{i+1}] with f_{i+1} = f_i + v/w_i. r is Marsaglia & Tsang's value
 /// for C = 256; with v = r f(r) + √(π/2)·erfc(r/√2) the recursion closes at f_C = 1 to 2e-15.
+/// Fast path: with u the 53-bit abscissa word, x = u·2⁻⁵³·w_i lies under the curve for sure
+/// when x < w_{i+1}, i.e. u < accept_i = ⌊2⁵³·w_{i+1}/w_i⌋; scale holds ±w_i·2⁻⁵³ indexed by
+/// the 9 low bits (layer and sign), so an accepted draw costs one compare and one multiply.
 struct ZigguratTables {
   static constexpr int kLayers = 256;
   static constexpr double kR = 3.6541528853610088;
-  std::array<double, kLayers + 1> w{};  ///< box widths (w_0 = v/f(r), w_1 = r, w_C = 0)
-  std::array<double, kLayers + 1> f{};  ///< f at the box bottoms (f_C = 1)
+  static constexpr double kTwoPow53 = 0x1.0p53;
+  std::array<double, kLayers + 1> w{};          ///< box widths (w_0 = v/f(r), w_1 = r, w_C = 0)
+  std::array<double, kLayers + 1> f{};          ///< f at the box bottoms (f_C = 1)
+  std::array<std::uint64_t, kLayers> accept{};  ///< fast-path bound on the 53-bit word
+  std::array<double, 2 * kLayers> scale{};      ///< ±w_i·2⁻⁵³, index = layer + 256·sign
 
   ZigguratTables() {
     const auto density = [](double x) { return std::exp(-0.5 * x * x); };
@@ -95,6 +106,12 @@ struct ZigguratTables {
     }
     w[kLayers] = 0.0;
     f[kLayers] = 1.0;
+    for (int i = 0; i < kLayers; ++i) {
+      accept[static_cast<std::size_t>(i)] =
+          static_cast<std::uint64_t>(std::floor(kTwoPow53 * (w[i + 1] / w[i])));
+      scale[static_cast<std::size_t>(i)] = w[i] / kTwoPow53;
+      scale[static_cast<std::size_t>(i + kLayers)] = -w[i] / kTwoPow53;
+    }
   }
 };
 
@@ -109,32 +126,74 @@ double unit_uniform(std::uint64_t word) {
   return static_cast<double>(static_cast<std::int64_t>(word >> 11U)) * 0x1.0p-53;
 }
 
-}  // namespace
+/// A draw and the engine after it.
+struct SlowDraw {
+  double z;
+  Xoshiro256PlusPlus engine;
+};
 
-double StandardNormal::operator()() {
-  const ZigguratTables& t = ziggurat_tables();
+/// The rest of the ziggurat for a WORD the fast path rejected: tail or wedge test, then fresh
+/// draws (full algorithm) until one is accepted. Rare (1.5 %), so kept out of line; it takes
+/// and returns the engine by value so that the engine's address never escapes the fill() loop
+/// and its state stays in registers there.
+[[gnu::noinline]] SlowDraw ziggurat_slow(const ZigguratTables& t, Xoshiro256PlusPlus engine,
+                                         std::uint64_t word) {
   for (;;) {
-    // One word: bits 0–7 pick the layer, bit 8 the sign, bits 11–63 the abscissa.
-    const std::uint64_t word = engine_();
     const auto layer = static_cast<int>(word & 0xffU);
     const double sign = (word & 0x100U) != 0 ? -1.0 : 1.0;
     const double x = unit_uniform(word) * t.w[layer];
-    if (x < t.w[layer + 1]) return sign * x;  // inside the part of the box under the curve
+    if (x < t.w[layer + 1]) return {sign * x, engine};  // fresh words (or the bound's rounding)
     if (layer == 0) {
       // Tail x > r: Marsaglia's method, x = r + e1/r accepted when 2·e2 > (e1/r)², e1, e2
       // standard exponentials.
       double tail = 0.0;
       double e2 = 0.0;
       do {
-        tail = -std::log(1.0 - unit_uniform(engine_())) / ZigguratTables::kR;
-        e2 = -std::log(1.0 - unit_uniform(engine_()));
+        tail = -std::log(1.0 - unit_uniform(engine())) / ZigguratTables::kR;
+        e2 = -std::log(1.0 - unit_uniform(engine()));
       } while (e2 + e2 < tail * tail);
-      return sign * (ZigguratTables::kR + tail);
+      return {sign * (ZigguratTables::kR + tail), engine};
     }
     // Wedge: accept when a uniform height in [f_i, f_{i+1}] falls under the curve.
-    const double y = t.f[layer] + unit_uniform(engine_()) * (t.f[layer + 1] - t.f[layer]);
-    if (y < std::exp(-0.5 * x * x)) return sign * x;
+    const double y = t.f[layer] + unit_uniform(engine()) * (t.f[layer + 1] - t.f[layer]);
+    if (y < std::exp(-0.5 * x * x)) return {sign * x, engine};
+    word = engine();
   }
+}
+
+/// One draw, the fast path inline.
+inline double ziggurat_draw(const ZigguratTables& t, Xoshiro256PlusPlus& engine) {
+  const std::uint64_t word = engine();
+  const std::uint64_t u = word >> 11U;
+  if (u < t.accept[word & 0xffU]) [[likely]] {
+    return static_cast<double>(static_cast<std::int64_t>(u)) * t.scale[word & 0x1ffU];
+  }
+  const SlowDraw slow = ziggurat_slow(t, engine, word);
+  engine = slow.engine;
+  return slow.z;
+}
+
+}  // namespace
+
+double StandardNormal::operator()() { return ziggurat_draw(ziggurat_tables(), engine_); }
+
+void StandardNormal::fill(std::span<double> out) {
+  const ZigguratTables& t = ziggurat_tables();
+  Xoshiro256PlusPlus engine = engine_;  // a local copy: its state lives in registers
+  for (double& z : out) z = ziggurat_draw(t, engine);
+  engine_ = engine;
+}
+
+ChannelNoiseModel channel_model_from(const NoiseCoefficients& coefficients) {
+  ChannelNoiseModel model;
+  model.quantization = coefficients.quantization;
+  model.white_noise = coefficients.white_noise;
+  model.bias_instability = coefficients.bias_instability;
+  model.random_walk = coefficients.random_walk;
+  model.ramp = coefficients.ramp;
+  model.gauss_markov = coefficients.gauss_markov;
+  model.sinusoids = coefficients.sinusoids;
+  return model;
 }
 
 void validate_channel_model(const ChannelNoiseModel& model, std::string_view where) {
@@ -218,6 +277,8 @@ ChannelSimulator::ChannelSimulator(const ChannelNoiseModel& model, const Simulat
   // sample is the exact τ0-average of b(t), see next_block().
   rw_step_sigma_ = model.random_walk * std::sqrt(tau0_s_);
   rw_draw_ = stream(kRandomWalkStream);
+  // Two normals per sample for each term of a group of averaged terms (the widest user).
+  scratch_.resize(2 * kChunk * kGroup);
 
   // User Gauss–Markov terms: exact point-sampled AR(1), φ = e^{−τ0/T_c},
   // q_d = σ²(1 − φ²), stationary start x_0 ~ N(0, σ²) (theory.md §4.1, §6.2).
@@ -228,9 +289,8 @@ ChannelSimulator::ChannelSimulator(const ChannelNoiseModel& model, const Simulat
     term.phi = std::exp(-e);
     term.step_sigma = gm.sigma * std::sqrt(-std::expm1(-2.0 * e));
     term.state_gain = 1.0;
-    term.averaged = false;
     term.state = gm.sigma * term.draw();
-    ou_terms_.push_back(std::move(term));
+    point_terms_.push_back(std::move(term));
   }
 
   // Flicker terms: exact τ0-averages of an Ornstein–Uhlenbeck process (not point samples),
@@ -261,16 +321,56 @@ ChannelSimulator::ChannelSimulator(const ChannelNoiseModel& model, const Simulat
       const double d2 = 2.0 * averaged_ou_bracket(e) -
                         one_minus_phi * one_minus_phi * one_minus_phi / (1.0 + term.phi);
       term.out_z2 = sigma * std::sqrt(std::max(d2, 0.0)) / e;
-      term.averaged = true;
       term.state = sigma * term.draw();
-      ou_terms_.push_back(std::move(term));
+      averaged_terms_.push_back(std::move(term));
     }
   }
 }
 
+template <std::size_t K>
+void ChannelSimulator::add_averaged_group(std::size_t first, std::span<double> out) {
+  static_assert(K >= 1 && K <= kGroup);
+  const std::size_t n = out.size();
+  // Coefficients and states copied to locals: the compiler keeps them in registers (no
+  // aliasing with OUT) and the K recursions interleave.
+  std::array<const double*, K> z{};
+  std::array<double, K> state{}, phi{}, gain{}, step{}, w1{}, w2{};
+  for (std::size_t k = 0; k < K; ++k) {
+    OuTerm& term = averaged_terms_[first + k];
+    const std::span<double> normals(scratch_.data() + k * 2 * kChunk, 2 * n);
+    term.draw.fill(normals);  // z1 = [2i], z2 = [2i+1]
+    z[k] = normals.data();
+    state[k] = term.state;
+    phi[k] = term.phi;
+    gain[k] = term.state_gain;
+    step[k] = term.step_sigma;
+    w1[k] = term.out_z1;
+    w2[k] = term.out_z2;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < K; ++k) {
+      const double z1 = z[k][2 * i];
+      const double z2 = z[k][2 * i + 1];
+      sum += gain[k] * state[k] + w1[k] * z1 + w2[k] * z2;
+      state[k] = phi[k] * state[k] + step[k] * z1;
+    }
+    out[i] += sum;
+  }
+  for (std::size_t k = 0; k < K; ++k) averaged_terms_[first + k].state = state[k];
+}
+
 void ChannelSimulator::next_block(std::span<double> out) {
+  for (std::size_t start = 0; start < out.size(); start += kChunk) {
+    next_chunk(out.subspan(start, std::min(kChunk, out.size() - start)));
+  }
+}
+
+void ChannelSimulator::next_chunk(std::span<double> out) {
   const std::size_t n = out.size();
   const std::int64_t first = next_index_;
+  const std::span<double> z1(scratch_.data(), n);       // one normal per sample
+  const std::span<double> z12(scratch_.data(), 2 * n);  // two per sample: z1 = [2i], z2 = [2i+1]
   for (std::size_t i = 0; i < n; ++i) out[i] = model_.constant;
 
   if (model_.ramp != 0.0) {
@@ -288,43 +388,59 @@ void ChannelSimulator::next_block(std::span<double> out) {
     }
   }
   if (white_sigma_ > 0.0) {
-    for (std::size_t i = 0; i < n; ++i) out[i] += white_sigma_ * white_draw_();
+    white_draw_.fill(z1);
+    for (std::size_t i = 0; i < n; ++i) out[i] += white_sigma_ * z1[i];
   }
   if (model_.quantization > 0.0) {
+    quant_draw_.fill(z1);
     const double scale = model_.quantization;
+    double previous = quant_previous_;
     for (std::size_t i = 0; i < n; ++i) {
-      const double next = scale * quant_draw_();
-      out[i] += (next - quant_previous_) / tau0_s_;
-      quant_previous_ = next;
+      const double next = scale * z1[i];
+      out[i] += (next - previous) / tau0_s_;
+      previous = next;
     }
+    quant_previous_ = previous;
   }
   if (rw_step_sigma_ > 0.0) {
     // Exact τ0-average of a Wiener process b with increment w = s·z1 (s = K√τ0) over the
     // sample: b_k + (1/τ0)∫₀^τ0 W dt, where the integral has variance s²/3 and covariance s/2
     // with w, i.e. s·(z1/2 + z2/√12). Point samples b_k would add a white term
     // (K²τ0²/6τ, theory.md §4.1 [ZH08]: AV(n) = (2n²+1)σ²/(6n)); the average gives K²τ/3.
+    rw_draw_.fill(z12);
     const double s = rw_step_sigma_;
-    const double inv_sqrt12 = 1.0 / std::sqrt(12.0);
+    const double half_s = 0.5 * s;
+    const double s_over_sqrt12 = s / std::sqrt(12.0);
+    double state = rw_state_;
     for (std::size_t i = 0; i < n; ++i) {
-      const double z1 = rw_draw_();
-      const double z2 = rw_draw_();
-      out[i] += rw_state_ + s * (0.5 * z1 + inv_sqrt12 * z2);
-      rw_state_ += s * z1;
+      out[i] += state + half_s * z12[2 * i] + s_over_sqrt12 * z12[2 * i + 1];
+      state += s * z12[2 * i];
     }
+    rw_state_ = state;
   }
-  for (OuTerm& term : ou_terms_) {
-    if (term.averaged) {
-      for (std::size_t i = 0; i < n; ++i) {
-        const double z1 = term.draw();
-        const double z2 = term.draw();
-        out[i] += term.state_gain * term.state + term.out_z1 * z1 + term.out_z2 * z2;
-        term.state = term.phi * term.state + term.step_sigma * z1;
-      }
-    } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        out[i] += term.state;
-        term.state = term.phi * term.state + term.step_sigma * term.draw();
-      }
+  for (OuTerm& term : point_terms_) {
+    term.draw.fill(z1);
+    double state = term.state;
+    for (std::size_t i = 0; i < n; ++i) {
+      out[i] += state;
+      state = term.phi * state + term.step_sigma * z1[i];
+    }
+    term.state = state;
+  }
+  for (std::size_t first = 0; first < averaged_terms_.size(); first += kGroup) {
+    switch (std::min(kGroup, averaged_terms_.size() - first)) {
+      case 1:
+        add_averaged_group<1>(first, out);
+        break;
+      case 2:
+        add_averaged_group<2>(first, out);
+        break;
+      case 3:
+        add_averaged_group<3>(first, out);
+        break;
+      default:
+        add_averaged_group<4>(first, out);
+        break;
     }
   }
   if (model_.output_lsb > 0.0) {

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
       "Run 'imunoise <command> --help' for the options of each command."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "imunoise 0.1.0");
+  imunoise::tools::register_analyze_command(app);
   imunoise::tools::register_allan_command(app);
   imunoise::tools::register_check_command(app);
   imunoise::tools::register_simulate_command(app);

@@ -16,12 +16,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <numbers>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -147,7 +150,7 @@ TEST(StandardNormal, MatchesNormalProbabilitiesAndMoments) {
   // n = 4e6 draws. A fraction p has binomial standard error √(p(1−p)/n); the sample variance
   // has relative standard error √(2/n), the fourth moment √(96/n) (E z⁸ − (E z⁴)² = 105 − 9).
   // The tail beyond the ziggurat's r = 3.654 checks the exponential tail sampler.
-  StandardNormal draw(std::mt19937_64(31));
+  StandardNormal draw(Xoshiro256PlusPlus(31));
   const int n = 4'000'000;
   const std::vector<double> quantiles = {-3.9, -2.0, -1.0, 0.0, 0.5, 1.5, 2.5, 3.7};
   std::vector<int> below(quantiles.size(), 0);
@@ -167,6 +170,106 @@ TEST(StandardNormal, MatchesNormalProbabilitiesAndMoments) {
     EXPECT_NEAR(static_cast<double>(below[j]) / n, p, 5.0 * std::sqrt(p * (1.0 - p) / n))
         << "P(z < " << quantiles[j] << ")";
   }
+}
+
+static_assert(std::uniform_random_bit_generator<Xoshiro256PlusPlus>);
+
+TEST(Splitmix64, MatchesReferenceOutputsFromStateZero) {
+  // First outputs of Vigna's splitmix64.c from state 0 (the values every port checks).
+  std::uint64_t state = 0;
+  EXPECT_EQ(splitmix64(state), 0xe220a8397b1dcdafULL);
+  EXPECT_EQ(splitmix64(state), 0x6e789e6aa1b965f4ULL);
+  EXPECT_EQ(splitmix64(state), 0x06c45d188009454fULL);
+}
+
+TEST(Xoshiro256PlusPlus, MatchesReferenceSequenceFromState0001) {
+  // xoshiro256++ from the raw state {0, 0, 0, 1}, as tabulated by the xoshiro-fortran test
+  // data (DSCF-1224/xoshiro-fortran, test/README.md, "without jump"), itself from the
+  // authors' C code. The first two follow by hand from the definition: rotl(0 + 1, 23) + 0 =
+  // 2^23; the state becomes {1, 0, 0, 2^45}, so rotl(1 + 2^45, 23) + 1 = 2^23 + 2^4 + 1.
+  Xoshiro256PlusPlus engine = Xoshiro256PlusPlus::from_state({0, 0, 0, 1});
+  const std::uint64_t expected[] = {
+      0x0000000000800000ULL, 0x0000000000800011ULL, 0x0002200000800011ULL, 0x0002200044000020ULL,
+      0x00022000448008a1ULL, 0x01102100802208a0ULL, 0x0114002284200880ULL, 0x0402896644a64095ULL,
+      0x8a14a0a244acc891ULL, 0x8c88ba4680b20495ULL};
+  for (const std::uint64_t word : expected) EXPECT_EQ(engine(), word);
+}
+
+TEST(Xoshiro256PlusPlus, SeedsItsStateWithSplitmix64) {
+  // Seeding = four splitmix64 outputs, so from seed 0 the first word is
+  // rotl(s0 + s3, 23) + s0 of the splitmix64 reference outputs.
+  std::uint64_t state = 0;
+  std::array<std::uint64_t, 4> words{};
+  for (std::uint64_t& w : words) w = splitmix64(state);
+  Xoshiro256PlusPlus seeded(0);
+  Xoshiro256PlusPlus raw = Xoshiro256PlusPlus::from_state(words);
+  const std::uint64_t first = raw();
+  EXPECT_EQ(first, std::rotl(words[0] + words[3], 23) + words[0]);
+  EXPECT_EQ(seeded(), first);
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(seeded(), raw());
+}
+
+TEST(StandardNormal, FillMatchesSingleDrawsAndDoesNotDependOnSplit) {
+  const std::size_t n = 10'000;
+  StandardNormal single(Xoshiro256PlusPlus(5));
+  std::vector<double> one_by_one(n);
+  for (double& z : one_by_one) z = single();
+  StandardNormal whole(Xoshiro256PlusPlus(5));
+  std::vector<double> filled(n);
+  whole.fill(filled);
+  EXPECT_EQ(filled, one_by_one);
+  StandardNormal pieces(Xoshiro256PlusPlus(5));
+  std::vector<double> split(n);
+  std::size_t start = 0;
+  for (const std::size_t size : {1U, 7U, 300U, 4096U, 2U}) {
+    pieces.fill(std::span<double>(split).subspan(start, size));
+    start += size;
+  }
+  pieces.fill(std::span<double>(split).subspan(start));
+  EXPECT_EQ(split, one_by_one);
+}
+
+TEST(StandardNormal, FillMomentsAndTailsMatchTheNormalLaw) {
+  // n = 2^24 draws through fill(). Standard errors from n alone: mean 1/√n; the second
+  // moment √(2/n) (Var z² = 2); the fourth √(96/n) (Var z⁴ = E z⁸ − 9 = 96); a fraction p
+  // √(p(1−p)/n). Tolerance 5 standard errors. P(|z| > 3.5) exercises the base strip of
+  // layer 0 and the tail beyond r = 3.654; P(|z| > 4) the tail sampler alone.
+  const std::size_t n = std::size_t{1} << 24U;
+  StandardNormal draw(Xoshiro256PlusPlus(2024));
+  std::vector<double> block(1000);
+  double sum = 0.0, sum2 = 0.0, sum4 = 0.0;
+  std::size_t beyond_35 = 0, beyond_4 = 0;
+  for (std::size_t done = 0; done < n;) {
+    const std::size_t m = std::min(block.size(), n - done);
+    draw.fill(std::span<double>(block).first(m));
+    for (std::size_t i = 0; i < m; ++i) {
+      const double z = block[i];
+      const double z2 = z * z;
+      sum += z;
+      sum2 += z2;
+      sum4 += z2 * z2;
+      beyond_35 += std::abs(z) > 3.5 ? 1U : 0U;
+      beyond_4 += std::abs(z) > 4.0 ? 1U : 0U;
+    }
+    done += m;
+  }
+  const double nd = static_cast<double>(n);
+  const auto tail_check = [&](std::size_t count, double x) {
+    const double p = std::erfc(x / std::numbers::sqrt2);  // P(|z| > x)
+    const double se = std::sqrt(p * (1.0 - p) / nd);
+    const double observed = static_cast<double>(count) / nd;
+    std::printf("[ info ] P(|z| > %g) = %.4e vs exact %.4e (%.2f standard errors)\n", x, observed,
+                p, (observed - p) / se);
+    EXPECT_NEAR(observed, p, 5.0 * se) << "x = " << x;
+  };
+  std::printf("[ info ] n = %zu: mean %.2e (se %.1e), E z^2 %.6f (se %.1e), E z^4 %.5f (se %.1e)\n",
+              n, sum / nd, 1.0 / std::sqrt(nd), sum2 / nd, std::sqrt(2.0 / nd), sum4 / nd,
+              std::sqrt(96.0 / nd));
+  EXPECT_NEAR(sum / nd, 0.0, 5.0 / std::sqrt(nd));
+  EXPECT_NEAR(sum2 / nd, 1.0, 5.0 * std::sqrt(2.0 / nd));
+  EXPECT_NEAR(sum4 / nd, 3.0, 5.0 * std::sqrt(96.0 / nd));
+  tail_check(beyond_35, 3.5);
+  tail_check(beyond_4, 4.0);
 }
 
 TEST(FlickerConstruction, ClosedFormAdevIsFlatAtBiasInstabilityOverBand) {
@@ -347,6 +450,53 @@ TEST(NoiseSimulator, BlockSizeDoesNotChangeTheOutput) {
     EXPECT_EQ(simulator.samples_generated(), static_cast<std::int64_t>(whole.size()));
     EXPECT_EQ(pieces, whole) << "block size " << block;  // bitwise identical
   }
+}
+
+TEST(NoiseSimulator, OneBlockEqualsBlocksOf1And7And4096ForEveryFlickerGrouping) {
+  // Flicker terms advance in groups of 4 and blocks in chunks of ChannelSimulator::kChunk;
+  // neither may show in the output. Bands [0.01, 10^k] s give 9, 10, 11 and 12 flicker terms
+  // (groups 4+4+1 … 4+4+4); 10'007 samples cross many chunk boundaries at every block size.
+  ChannelNoiseModel model = every_term_model();
+  for (const double tau_max : {1e2, 1e3, 1e4, 1e5}) {
+    SimulationOptions options = options_at(100.0, 24);
+    options.flicker_band = {0.01, tau_max};
+    ChannelSimulator one(model, options, 4);
+    std::vector<double> whole(10'007);
+    one.next_block(whole);
+    for (const std::size_t block : {1U, 7U, 4096U}) {
+      ChannelSimulator simulator(model, options, 4);
+      std::vector<double> pieces(whole.size());
+      for (std::size_t start = 0; start < pieces.size(); start += block) {
+        simulator.next_block(
+            std::span<double>(pieces).subspan(start, std::min(block, pieces.size() - start)));
+      }
+      EXPECT_EQ(pieces, whole) << "tau_max " << tau_max << ", block size " << block;
+    }
+  }
+}
+
+TEST(NoiseSimulator, ChannelModelFromCoefficientsCopiesEveryTerm) {
+  NoiseCoefficients c;
+  c.quantization = 1e-6;
+  c.white_noise = 2e-4;
+  c.bias_instability = 3e-5;
+  c.random_walk = 4e-6;
+  c.ramp = 5e-8;
+  c.gauss_markov = {{1e-4, 30.0}};
+  c.sinusoids = {{1e-3, 2.0, 0.5}};
+  const ChannelNoiseModel m = channel_model_from(c);
+  EXPECT_EQ(m.quantization, c.quantization);
+  EXPECT_EQ(m.white_noise, c.white_noise);
+  EXPECT_EQ(m.bias_instability, c.bias_instability);
+  EXPECT_EQ(m.random_walk, c.random_walk);
+  EXPECT_EQ(m.ramp, c.ramp);
+  ASSERT_EQ(m.gauss_markov.size(), 1U);
+  EXPECT_EQ(m.gauss_markov[0].sigma, 1e-4);
+  EXPECT_EQ(m.gauss_markov[0].tau_c_s, 30.0);
+  ASSERT_EQ(m.sinusoids.size(), 1U);
+  EXPECT_EQ(m.sinusoids[0].frequency_hz, 2.0);
+  EXPECT_EQ(m.constant, 0.0);
+  EXPECT_EQ(m.output_lsb, 0.0);
 }
 
 TEST(NoiseSimulator, SameSeedReproducesDifferentSeedDoesNot) {

@@ -188,8 +188,8 @@ TEST(SimulateCli, BadModelFilesFailNamingFileLineAndKey) {
     std::vector<std::string> fragments;
   };
   const Case cases[] = {
-      {"gyro:\n  arw_deg_per_sqrt_h: 0.4\n",
-       {"bad.yaml:2:3", "gyro.arw_deg_per_sqrt_h", "unknown key", "arw_rad_per_sqrt_s"}},
+      {"gyro:\n  arw_deg_per_sqrt_hr: 0.4\n",  // arw_deg_per_sqrt_h is a valid key
+       {"bad.yaml:2:3", "gyro.arw_deg_per_sqrt_hr", "unknown key", "arw_rad_per_sqrt_s"}},
       {"gyro:\n  x:\n    arw_rad_per_sqrt_s: -1e-4\n",
        {"bad.yaml:3", "gyro.x.arw_rad_per_sqrt_s", ">= 0"}},
       {"accel:\n  vrw_m_per_s_sqrt_s: abc\n", {"accel.vrw_m_per_s_sqrt_s", "'abc'"}},

@@ -1,0 +1,416 @@
+/// @file
+/// @brief Welch PSD, window helpers and log binning (see psd.h; theory.md §5.1–5.2).
+#include "analysis/psd.h"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "common/errors.h"
+
+namespace imunoise::analysis {
+namespace {
+
+/// FFTW's planner is not thread-safe (fftw_execute on distinct plans is): every plan
+/// creation and destruction in this file holds this mutex.
+std::mutex& fftw_planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+struct FftwFree {
+  void operator()(void* p) const { fftw_free(p); }
+};
+
+/// A number for an error message, %g style (std::to_string prints 1e-9 as 0.000000).
+std::string text(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
+
+/// Bins j = 0 and j = L/2 (even L) are real-valued: weight c_j = 1 instead of 2 in the
+/// one-sided density (theory.md §5.1), and χ² with half the dof.
+bool is_real_bin(std::size_t j, std::size_t length) {
+  return j == 0 || (length % 2 == 0 && j == length / 2);
+}
+
+/// Covariance of the powers of raw bins j and j' summed over segments (see
+/// Spectrum::power_covariance): g(|j − j'|) + g(fold(j + j')), the second term being the
+/// pseudo-covariance E[X_j X_j'] that couples bins to their mirror images about DC and
+/// Nyquist (Isserlis: Cov(|X|², |Y|²) = |E[XY*]|² + |E[XY]|²).
+struct PowerCovariance {
+  std::span<const double> g;  ///< g(Δ), Δ = 0…⌊L/2⌋
+  std::size_t length = 0;     ///< L
+
+  /// g at any lag: L-periodic and even.
+  double at(std::size_t lag) const {
+    lag %= length;
+    return g[std::min(lag, length - lag)];
+  }
+  double pair(std::size_t j, std::size_t k) const { return at(j > k ? j - k : k - j) + at(j + k); }
+  /// Σ_{k=a}^{b} pair(j, k).
+  double row(std::size_t j, std::size_t a, std::size_t b) const {
+    double sum = 0.0;
+    for (std::size_t k = a; k <= b; ++k) sum += pair(j, k);
+    return sum;
+  }
+};
+
+/// Equivalent χ² dof of the average of the one-sided densities of raw bins a…b, for a
+/// spectrum flat over them: ν = 2·(E Σ)²/Var Σ = 2K(Σc_j)² / Σ_{j,k} c_j c_k cov(j, k).
+/// The double sum is done in O(b − a) by grouping pairs by j − k and by j + k, with the
+/// weights written c_j = 2 − e_j (e_j = 1 at the real DC / Nyquist bins).
+double averaged_dof(const PowerCovariance& cov, std::size_t segments, std::size_t a,
+                    std::size_t b) {
+  const std::size_t m = b - a + 1;
+  double all_pairs = 0.0;  // Σ_{j,k} cov(j, k)
+  for (std::size_t d = 0; d < m; ++d) {
+    all_pairs += (d == 0 ? 1.0 : 2.0) * static_cast<double>(m - d) * cov.at(d);
+  }
+  for (std::size_t s = 2 * a; s <= 2 * b; ++s) {
+    const std::size_t centre = a + b;
+    const std::size_t off = s > centre ? s - centre : centre - s;
+    all_pairs += static_cast<double>(m - off) * cov.at(s);
+  }
+  std::size_t edges[2] = {0, 0};
+  std::size_t n_edges = 0;
+  for (std::size_t j : {a, b}) {
+    if (is_real_bin(j, cov.length) && (n_edges == 0 || edges[0] != j)) edges[n_edges++] = j;
+  }
+  double weighted = 4.0 * all_pairs;
+  for (std::size_t e = 0; e < n_edges; ++e) weighted -= 4.0 * cov.row(edges[e], a, b);
+  for (std::size_t e = 0; e < n_edges; ++e) {
+    for (std::size_t f = 0; f < n_edges; ++f) weighted += cov.pair(edges[e], edges[f]);
+  }
+  const double weight_sum = 2.0 * static_cast<double>(m) - static_cast<double>(n_edges);
+  return 2.0 * static_cast<double>(segments) * weight_sum * weight_sum / weighted;
+}
+
+void check_options(const WelchOptions& options) {
+  IMUNOISE_CHECK(std::isfinite(options.overlap) && options.overlap >= 0.0 && options.overlap < 1.0,
+                 InputError,
+                 "welch: overlap must be in [0, 1) (got " + text(options.overlap) + ")");
+  switch (options.window) {
+    case Window::hann:
+    case Window::hamming:
+    case Window::blackman_harris:
+    case Window::rectangular:
+      break;
+    default:
+      throw InputError("welch: unknown window");
+  }
+  switch (options.detrend) {
+    case Detrend::none:
+    case Detrend::constant:
+    case Detrend::linear:
+      break;
+    default:
+      throw InputError("welch: unknown detrend mode");
+  }
+}
+
+/// Least-squares trend of MODE: x_n ≈ mean + slope·(n − centre), with the centred index
+/// (centre = (n−1)/2) so that mean and slope decouple; slope = Σt·x/Σt², Σt² = n(n²−1)/12.
+struct Trend {
+  double mean = 0.0;
+  double slope = 0.0;
+  double centre = 0.0;
+  double at(std::size_t n) const { return mean + slope * (static_cast<double>(n) - centre); }
+};
+
+Trend fit_trend(std::span<const double> x, Detrend mode) {
+  Trend t;
+  if (mode == Detrend::none || x.empty()) return t;
+  const double count = static_cast<double>(x.size());
+  for (double v : x) t.mean += v;
+  t.mean /= count;
+  t.centre = 0.5 * (count - 1.0);
+  if (mode == Detrend::linear && x.size() > 1) {
+    double sxt = 0.0;
+    for (std::size_t n = 0; n < x.size(); ++n) {
+      sxt += (static_cast<double>(n) - t.centre) * (x[n] - t.mean);
+    }
+    t.slope = sxt / (count * (count * count - 1.0) / 12.0);
+  }
+  return t;
+}
+
+/// Mean square of the whole record about its trend of MODE (two passes, no copy).
+double detrended_mean_square(std::span<const double> x, Detrend mode) {
+  const Trend trend = fit_trend(x, mode);
+  double sum = 0.0;
+  for (std::size_t n = 0; n < x.size(); ++n) {
+    const double r = x[n] - trend.at(n);
+    sum += r * r;
+  }
+  return sum / static_cast<double>(x.size());
+}
+
+}  // namespace
+
+std::vector<double> window_coefficients(Window window, std::size_t length) {
+  IMUNOISE_CHECK(length >= 2, InputError,
+                 "window_coefficients: length must be >= 2 (got " + std::to_string(length) + ")");
+  std::vector<double> w(length);
+  const double step = 2.0 * std::numbers::pi / static_cast<double>(length);
+  for (std::size_t n = 0; n < length; ++n) {
+    const double a = step * static_cast<double>(n);
+    switch (window) {
+      case Window::hann:
+        w[n] = 0.5 - 0.5 * std::cos(a);
+        break;
+      case Window::hamming:
+        w[n] = 0.54 - 0.46 * std::cos(a);
+        break;
+      case Window::blackman_harris:  // Harris 1978, Proc. IEEE 66(1), 4-term −92 dB
+        w[n] = 0.35875 - 0.48829 * std::cos(a) + 0.14128 * std::cos(2.0 * a) -
+               0.01168 * std::cos(3.0 * a);
+        break;
+      case Window::rectangular:
+        w[n] = 1.0;
+        break;
+      default:
+        throw InputError("window_coefficients: unknown window");
+    }
+  }
+  return w;
+}
+
+double window_overlap_correlation(std::span<const double> window, std::size_t shift) {
+  double energy = 0.0;
+  for (double v : window) energy += v * v;
+  IMUNOISE_CHECK(energy > 0.0, InputError, "window_overlap_correlation: window is all zero");
+  if (shift >= window.size()) return 0.0;
+  double lagged = 0.0;
+  for (std::size_t n = 0; n + shift < window.size(); ++n) lagged += window[n] * window[n + shift];
+  return (lagged * lagged) / (energy * energy);
+}
+
+double effective_segments(std::span<const double> window, std::size_t segments, std::size_t step) {
+  IMUNOISE_CHECK(segments > 0 && step > 0, InputError,
+                 "effective_segments: segments and step must be > 0 (got " +
+                     std::to_string(segments) + ", " + std::to_string(step) + ")");
+  const double k = static_cast<double>(segments);
+  double sum = 0.0;
+  for (std::size_t l = 1; l < segments && l * step < window.size(); ++l) {
+    sum += (1.0 - static_cast<double>(l) / k) * window_overlap_correlation(window, l * step);
+  }
+  return k / (1.0 + 2.0 * sum);
+}
+
+struct WelchEstimator::Impl {
+  std::size_t length = 0;  // L
+  std::size_t step = 0;    // segment advance
+  std::size_t bins = 0;    // ⌊L/2⌋ + 1
+  WelchOptions options;
+  std::vector<double> window;
+  double window_energy = 0.0;  // Σ w²
+  std::unique_ptr<double[], FftwFree> in;
+  std::unique_ptr<fftw_complex[], FftwFree> out;
+  fftw_plan plan = nullptr;
+  std::vector<double> power;  // Σ over segments of |X_j|²
+
+  ~Impl() {
+    // FFTW guarantees thread safety for fftw_execute only, so buffers are freed under the
+    // planner mutex too.
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    if (plan != nullptr) fftw_destroy_plan(plan);
+    in.reset();
+    out.reset();
+  }
+};
+
+WelchEstimator::WelchEstimator(std::size_t segment_length, const WelchOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  check_options(options);
+  IMUNOISE_CHECK(segment_length >= 2 &&
+                     segment_length <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                 InputError,
+                 "welch: segment_length must be >= 2 and fit an int (got " +
+                     std::to_string(segment_length) + ")");
+  IMUNOISE_CHECK(
+      options.segment_length == 0 || options.segment_length == segment_length, InputError,
+      "welch: options.segment_length (" + std::to_string(options.segment_length) +
+          ") differs from the estimator's segment_length (" + std::to_string(segment_length) + ")");
+  Impl& s = *impl_;
+  s.length = segment_length;
+  s.options = options;
+  s.options.segment_length = segment_length;
+  const auto shared =
+      static_cast<std::size_t>(std::floor(options.overlap * static_cast<double>(s.length)));
+  s.step = s.length - std::min(shared, s.length - 1);
+  s.bins = s.length / 2 + 1;
+  s.window = window_coefficients(options.window, s.length);
+  for (double v : s.window) s.window_energy += v * v;
+  s.power.assign(s.bins, 0.0);
+  {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    s.in.reset(static_cast<double*>(fftw_malloc(sizeof(double) * s.length)));
+    s.out.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * s.bins)));
+    if (s.in && s.out) {
+      s.plan =
+          fftw_plan_dft_r2c_1d(static_cast<int>(s.length), s.in.get(), s.out.get(), FFTW_ESTIMATE);
+    }
+  }
+  if (!s.in || !s.out) throw AnalysisError("welch: out of memory for FFT buffers");
+  if (s.plan == nullptr) throw AnalysisError("welch: FFTW could not plan the transform");
+}
+
+WelchEstimator::~WelchEstimator() = default;
+WelchEstimator::WelchEstimator(WelchEstimator&&) noexcept = default;
+WelchEstimator& WelchEstimator::operator=(WelchEstimator&&) noexcept = default;
+
+std::size_t WelchEstimator::segment_length() const { return impl_->length; }
+
+Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_hz) {
+  Impl& s = *impl_;
+  IMUNOISE_CHECK(std::isfinite(sample_rate_hz) && sample_rate_hz > 0.0, InputError,
+                 "welch: sample rate must be finite and > 0 (got " + text(sample_rate_hz) + " Hz)");
+  IMUNOISE_CHECK(x.size() >= s.length, InputError,
+                 "welch: record of " + std::to_string(x.size()) +
+                     " samples is shorter than one segment of " + std::to_string(s.length));
+  for (std::size_t n = 0; n < x.size(); ++n) {
+    if (!std::isfinite(x[n])) {
+      throw InputError("welch: sample " + std::to_string(n) + " is not finite (" + text(x[n]) +
+                       ")");
+    }
+  }
+
+  const std::size_t segments = (x.size() - s.length) / s.step + 1;
+  std::fill(s.power.begin(), s.power.end(), 0.0);
+  const std::span<double> buffer(s.in.get(), s.length);
+  for (std::size_t k = 0; k < segments; ++k) {
+    std::copy_n(x.begin() + static_cast<std::ptrdiff_t>(k * s.step), s.length, buffer.begin());
+    const Trend trend = fit_trend(buffer, s.options.detrend);
+    for (std::size_t n = 0; n < s.length; ++n) buffer[n] = (buffer[n] - trend.at(n)) * s.window[n];
+    fftw_execute(s.plan);
+    for (std::size_t j = 0; j < s.bins; ++j) {
+      s.power[j] += s.out[j][0] * s.out[j][0] + s.out[j][1] * s.out[j][1];
+    }
+  }
+
+  Spectrum result;
+  result.segments = segments;
+  result.segment_length = s.length;
+  result.resolution_hz = sample_rate_hz / static_cast<double>(s.length);
+  result.frequency_hz.resize(s.bins);
+  result.density.resize(s.bins);
+  result.dof.resize(s.bins);
+  // theory.md §5.1: P(f_j) = c_j |Σ w_n x_n e^{−2πijn/L}|² / (f_s Σ w_n²), averaged over K.
+  const double scale = 1.0 / (sample_rate_hz * s.window_energy * static_cast<double>(segments));
+  for (std::size_t j = 0; j < s.bins; ++j) {
+    result.frequency_hz[j] = static_cast<double>(j) * result.resolution_hz;
+    result.density[j] = (is_real_bin(j, s.length) ? 1.0 : 2.0) * scale * s.power[j];
+    result.integrated_power += result.density[j] * result.resolution_hz;
+  }
+
+  // For white input of variance σ², the DFTs of two segments d samples apart have, at bins
+  // Δ apart, covariance σ²·C(Δ, d) with C(Δ, d) = Σ_n w_n w_{n+d} e^{−2πiΔn/L}. Hence
+  // g(Δ) = Σ_{k,k'} |C(Δ, (k'−k)·step)|² / (K (Σw²)²), lag l occurring 2(K − l) times (once
+  // for l = 0); g(0) is Welch's K/K_eff. Only lags l·step < L overlap: at 50 % overlap that
+  // is two FFTs, and never more than K, so this costs at most as much as the estimate.
+  result.power_covariance.assign(s.bins, 0.0);
+  const double k_count = static_cast<double>(segments);
+  const double norm = 1.0 / (s.window_energy * s.window_energy);
+  for (std::size_t l = 0; l < segments && l * s.step < s.length; ++l) {
+    const std::size_t d = l * s.step;
+    for (std::size_t n = 0; n < s.length; ++n) {
+      buffer[n] = n + d < s.length ? s.window[n] * s.window[n + d] : 0.0;
+    }
+    fftw_execute(s.plan);
+    const double weight = (l == 0 ? 1.0 : 2.0 * (1.0 - static_cast<double>(l) / k_count)) * norm;
+    for (std::size_t j = 0; j < s.bins; ++j) {
+      result.power_covariance[j] +=
+          weight * (s.out[j][0] * s.out[j][0] + s.out[j][1] * s.out[j][1]);
+    }
+  }
+  const PowerCovariance cov{result.power_covariance, s.length};
+  for (std::size_t j = 0; j < s.bins; ++j) result.dof[j] = averaged_dof(cov, segments, j, j);
+
+  result.sample_variance = detrended_mean_square(x, s.options.detrend);
+  return result;
+}
+
+Spectrum welch_psd(std::span<const double> x, double sample_rate_hz, const WelchOptions& options) {
+  std::size_t length = options.segment_length;
+  if (length == 0) {
+    IMUNOISE_CHECK(x.size() >= 16, InputError,
+                   "welch: record of " + std::to_string(x.size()) +
+                       " samples is too short (automatic segment length needs >= 16)");
+    length = 16;
+    while (length * 2 <= x.size() / 8) length *= 2;
+  }
+  WelchOptions resolved = options;
+  resolved.segment_length = length;
+  WelchEstimator estimator(length, resolved);
+  return estimator.estimate(x, sample_rate_hz);
+}
+
+Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
+  IMUNOISE_CHECK(
+      bins_per_decade >= 1, InputError,
+      "log_bin: bins_per_decade must be >= 1 (got " + std::to_string(bins_per_decade) + ")");
+  IMUNOISE_CHECK(
+      raw.frequency_hz.size() == raw.density.size() && raw.frequency_hz.size() == raw.dof.size(),
+      InputError,
+      "log_bin: frequency, density and dof sizes differ (" +
+          std::to_string(raw.frequency_hz.size()) + ", " + std::to_string(raw.density.size()) +
+          ", " + std::to_string(raw.dof.size()) + ")");
+  IMUNOISE_CHECK(raw.raw_bins.empty(), InputError, "log_bin: the spectrum is already binned");
+  // The covariance model indexes raw bins by j = f/Δf: only for a complete Welch spectrum.
+  const bool correlated = !raw.power_covariance.empty() && raw.segments > 0 &&
+                          raw.power_covariance.size() == raw.segment_length / 2 + 1 &&
+                          raw.frequency_hz.size() == raw.power_covariance.size();
+  const PowerCovariance cov{raw.power_covariance, raw.segment_length};
+
+  Spectrum out;
+  out.resolution_hz = raw.resolution_hz;
+  out.segments = raw.segments;
+  out.segment_length = raw.segment_length;
+  out.sample_variance = raw.sample_variance;
+  out.integrated_power = raw.integrated_power;
+
+  const double b = static_cast<double>(bins_per_decade);
+  // The small offset keeps exact edges (f = 1 Hz, 10 Hz, …) in the bin they open despite
+  // rounding in log10.
+  const auto bin_of = [b](double f) { return std::floor(b * std::log10(f) + 1e-9); };
+  std::size_t j = 0;
+  const std::size_t n = raw.frequency_hz.size();
+  while (j < n && !(raw.frequency_hz[j] > 0.0)) ++j;  // drop DC (and anything ≤ 0)
+  for (std::size_t k = j; k < n; ++k) {
+    const double f = raw.frequency_hz[k];
+    IMUNOISE_CHECK(std::isfinite(f) && (k == j || f > raw.frequency_hz[k - 1]), InputError,
+                   "log_bin: frequencies must be finite and increasing (bin " + std::to_string(k) +
+                       ": " + text(f) + " Hz)");
+  }
+  while (j < n) {
+    const double key = bin_of(raw.frequency_hz[j]);
+    std::size_t end = j;
+    double power = 0.0, log_f = 0.0, dof_sum = 0.0;
+    while (end < n && bin_of(raw.frequency_hz[end]) == key) {
+      power += raw.density[end];
+      log_f += std::log(raw.frequency_hz[end]);
+      dof_sum += raw.dof[end];
+      ++end;
+    }
+    const std::size_t count = end - j;
+    out.frequency_hz.push_back(count == 1 ? raw.frequency_hz[j]
+                                          : std::exp(log_f / static_cast<double>(count)));
+    out.density.push_back(power / static_cast<double>(count));
+    out.dof.push_back(correlated ? averaged_dof(cov, raw.segments, j, end - 1) : dof_sum);
+    out.first_raw_bin.push_back(j);
+    out.raw_bins.push_back(count);
+    j = end;
+  }
+  return out;
+}
+
+}  // namespace imunoise::analysis

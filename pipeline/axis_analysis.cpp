@@ -1,0 +1,332 @@
+#include "pipeline/axis_analysis.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "analysis/chi_square.h"
+#include "analysis/confidence.h"
+#include "analysis/edf.h"
+#include "analysis/noise_terms.h"
+#include "common/errors.h"
+#include "models/bias_instability_gm.h"
+#include "pipeline/bootstrap.h"
+
+namespace imunoise::pipeline {
+
+namespace {
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value;
+  return out.str();
+}
+
+/// Refuses records the estimator cannot answer, with the reason in the message.
+void check_rate_samples(const std::string& name, std::span<const double> rate) {
+  if (rate.size() < 16) {
+    throw AnalysisError(name + ": too few samples for any τ range (" +
+                        std::to_string(rate.size()) + "; a fit needs at least 16)");
+  }
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (std::size_t i = 0; i < rate.size(); ++i) {
+    if (!std::isfinite(rate[i])) {
+      throw AnalysisError(name + ": sample " + std::to_string(i) +
+                          " is not finite (NaN/Inf); drop such rows when reading the recording");
+    }
+    low = std::min(low, rate[i]);
+    high = std::max(high, rate[i]);
+  }
+  if (!(high > low)) {
+    throw AnalysisError(name + ": the signal is constant (" + number_text(low) +
+                        " in every sample); there is no noise to model");
+  }
+}
+
+/// (ΦᵀWΦ)⁻¹ intervals on the identified coefficients c (from the variances c²), normal
+/// approximation: used only when the bootstrap is off. Ignores inter-τ correlation, so it is
+/// optimistic (theory.md §4.3); the interval method says so.
+std::array<Interval, 5> least_squares_intervals(const analysis::FitResult& fit,
+                                                std::span<const analysis::FitPoint> points,
+                                                bool hadamard, double confidence) {
+  std::array<Interval, 5> out{};
+  std::vector<std::size_t> active;
+  for (std::size_t t = 0; t < 5; ++t) {
+    if (fit.terms[t].identified && fit.terms[t].value > 0.0) active.push_back(t);
+  }
+  if (active.empty() || fit.used.empty()) return out;
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(active.size()),
+                                                 static_cast<Eigen::Index>(active.size()));
+  for (std::size_t k : fit.used) {
+    const analysis::FitPoint& p = points[k];
+    const double model = analysis::model_avar(fit.coefficients, p.tau_s);
+    if (!(model > 0.0) || !(p.edf > 0.0)) continue;
+    const double w = p.edf / (2.0 * model * model);
+    Eigen::VectorXd phi(static_cast<Eigen::Index>(active.size()));
+    for (std::size_t i = 0; i < active.size(); ++i) {
+      const auto term = static_cast<analysis::NoiseTerm>(active[i]);
+      phi(static_cast<Eigen::Index>(i)) = hadamard ? analysis::term_hvar_basis(term, p.tau_s)
+                                                   : analysis::term_avar_basis(term, p.tau_s);
+    }
+    normal += w * phi * phi.transpose();
+  }
+  const Eigen::MatrixXd cov = normal.completeOrthogonalDecomposition().pseudoInverse();
+  // Two-sided normal quantile: P(Z² ≤ z²) = confidence with Z² ~ χ²₁.
+  const double z = std::sqrt(analysis::chi_square_quantile(confidence, 1.0));
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    const double c = fit.terms[active[i]].value;
+    const double sd_c = std::sqrt(std::max(cov(static_cast<Eigen::Index>(i),
+                                               static_cast<Eigen::Index>(i)),
+                                           0.0)) /
+                        (2.0 * c);  // d(c²) = 2c·dc
+    out[active[i]] = {std::max(0.0, c - z * sd_c), c + z * sd_c};
+  }
+  return out;
+}
+
+/// τ of the minimum of the fitted model ADEV over the fit range (log-spaced search), used as
+/// τ_min of the B → GM conventions (theory.md §4.4).
+double model_adev_minimum_tau(const NoiseCoefficients& c, double tau_low, double tau_high) {
+  double best_tau = tau_low;
+  double best = std::numeric_limits<double>::infinity();
+  const int steps = 400;
+  for (int i = 0; i <= steps; ++i) {
+    const double tau = tau_low * std::pow(tau_high / tau_low, static_cast<double>(i) / steps);
+    const double v = analysis::model_avar(c, tau);
+    if (v < best) {
+      best = v;
+      best_tau = tau;
+    }
+  }
+  return best_tau;
+}
+
+}  // namespace
+
+int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard) {
+  // Power-law exponent of S_y(f) of each term (theory.md §4.1 slopes): Q white PM (α = 2),
+  // N white FM (0), B flicker FM (−1), K random-walk FM (−2), R drift (−2 for the Allan
+  // family; invisible to Hadamard). A GM acts as a random walk below T_c and as white noise
+  // above (theory.md §4.1 limits).
+  int alpha = 0;
+  double best = -1.0;
+  const auto consider = [&](double variance, int a) {
+    if (variance > best) {
+      best = variance;
+      alpha = a;
+    }
+  };
+  const auto basis = [&](analysis::NoiseTerm t) {
+    return hadamard ? analysis::term_hvar_basis(t, tau_s) : analysis::term_avar_basis(t, tau_s);
+  };
+  consider(c.quantization * c.quantization * basis(analysis::NoiseTerm::quantization), 2);
+  consider(c.white_noise * c.white_noise * basis(analysis::NoiseTerm::white_noise), 0);
+  consider(c.bias_instability * c.bias_instability * basis(analysis::NoiseTerm::bias_instability),
+           -1);
+  consider(c.random_walk * c.random_walk * basis(analysis::NoiseTerm::random_walk), -2);
+  if (!hadamard) consider(c.ramp * c.ramp * basis(analysis::NoiseTerm::ramp), -2);
+  for (const GaussMarkov& gm : c.gauss_markov) {
+    const double v = hadamard ? analysis::gauss_markov_hvar(gm.sigma, gm.tau_c_s, tau_s)
+                              : analysis::gauss_markov_avar(gm.sigma, gm.tau_c_s, tau_s);
+    consider(v, tau_s < gm.tau_c_s ? -2 : 0);
+  }
+  return alpha;
+}
+
+void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoefficients& c) {
+  const bool hadamard = curve.type == analysis::DeviationType::ohdev ||
+                        curve.type == analysis::DeviationType::hdev;
+  for (analysis::DeviationPoint& p : curve.points) {
+    p.alpha = model_noise_alpha(c, p.tau_s, hadamard);
+    p.edf = analysis::edf_for(curve.type, p.alpha, p.m, curve.n_phase);
+    const analysis::DeviationInterval ci =
+        analysis::deviation_interval(p.value, p.edf, curve.confidence);
+    p.ci_low = ci.low;
+    p.ci_high = ci.high;
+  }
+}
+
+double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
+  const auto& pts = oadev.points;
+  if (pts.empty()) return 0.0;
+  std::size_t first = 0;
+  while (first + 1 < pts.size() && pts[first].m <= 8) {
+    const double here = pts[first].value * pts[first].value * pts[first].tau_s;
+    const double next = pts[first + 1].value * pts[first + 1].value * pts[first + 1].tau_s;
+    if (!(here < 0.8 * next)) break;
+    ++first;
+  }
+  if (first == 0) return pts.front().tau_s;
+  // A low-pass filter with unit DC gain leaves the white-noise AVAR short by a fraction that
+  // decays only like 1/m (the filter memory matters at the two block edges of each
+  // difference): a deficit of ~20 % at the first unbent point is still ~2 % ten times further
+  // out. Start the fit a decade above the bend.
+  return 10.0 * pts[first].tau_s;
+}
+
+AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
+                          double tau0_s, int axis_index, const AxisAnalysisOptions& options) {
+  check_rate_samples(name, rate);
+  AxisAnalysis out;
+  const std::vector<double> phase = analysis::phase_from_rate(rate, tau0_s);
+  const auto n_phase = static_cast<std::int64_t>(phase.size());
+
+  // 1. Deviations with chi-square intervals at the reported confidence.
+  analysis::DeviationOptions dev;
+  dev.confidence = options.confidence;
+  dev.threads = options.threads;
+  dev.type = analysis::DeviationType::oadev;
+  const std::vector<std::int64_t> m_oadev =
+      analysis::averaging_factors(options.grid, dev.type, n_phase);
+  out.oadev = analysis::compute_deviation(phase, tau0_s, m_oadev, dev);
+  dev.type = analysis::DeviationType::ohdev;
+  const std::vector<std::int64_t> m_ohdev =
+      analysis::averaging_factors(options.grid, dev.type, n_phase);
+  out.ohdev = analysis::compute_deviation(phase, tau0_s, m_ohdev, dev);
+
+  // 2. The fit on OAVAR (σ² domain, theory.md §4.3).
+  // fit_points caps each EDF at the largest value of the white/flicker/RW noise types for that
+  // m, so a mis-identified noise type at large m cannot over-weight a point.
+  std::vector<analysis::FitPoint> points = analysis::fit_points(out.oadev);
+  analysis::FitOptions fit_options = options.fit;
+  if (fit_options.tau_min_s <= 0.0 && options.auto_low_pass) {
+    fit_options.tau_min_s = low_pass_tau_min(out.oadev);
+  }
+  analysis::FitResult first_fit = analysis::fit_noise_model(points, fit_options);
+  // The lag-1 noise identification becomes unreliable with few decimated points at large m
+  // (e.g. white FM read as white PM, ν wrong by 10²–10³). Once a model exists, the noise type
+  // at each τ is that of the model's dominant term, and the EDF, intervals and fit weights
+  // follow it (theory.md §4.3: model-based weights); the fit is then repeated once.
+  apply_model_noise_type(out.oadev, first_fit.coefficients);
+  points = analysis::fit_points(out.oadev);
+  out.fit = analysis::fit_noise_model(points, fit_options);
+  apply_model_noise_type(out.oadev, out.fit.coefficients);
+  apply_model_noise_type(out.ohdev, out.fit.coefficients);
+
+  // 3. Read-offs (traceability) and the PSD cross-check.
+  std::vector<double> taus, adevs;
+  for (const auto& p : out.oadev.points) {
+    taus.push_back(p.tau_s);
+    adevs.push_back(p.value);
+  }
+  out.slope = analysis::slope_readoff(taus, adevs);
+  const analysis::Spectrum raw = analysis::welch_psd(rate, 1.0 / tau0_s, options.welch);
+  out.psd = analysis::log_bin(raw, options.psd_bins_per_decade);
+  out.psd_readoff = analysis::psd_readoff(out.psd);
+  out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s,
+                                            0.4 / tau0_s);
+
+  // 4. Intervals.
+  models::AxisModel& model = out.model;
+  model.name = name;
+  model.gyro = gyro;
+  model.fit_tau_min_s = out.fit.tau_min_s;
+  model.fit_tau_max_s = out.fit.tau_max_s;
+  model.fit_note = out.fit.selection_note;
+  std::array<Interval, 5> intervals{};
+  std::string interval_method;
+  std::vector<Interval> gm_sigma, gm_tau;
+  if (options.bootstrap_replicates >= 2) {
+    BootstrapOptions boot;
+    boot.replicates = options.bootstrap_replicates;
+    boot.seed = options.seed * 1000003ULL + static_cast<std::uint64_t>(axis_index);
+    boot.confidence = options.confidence;
+    boot.threads = options.threads;
+    const BootstrapResult result =
+        bootstrap_fit(out.fit, points, m_oadev, static_cast<std::int64_t>(rate.size()), tau0_s,
+                      fit_options, boot);
+    intervals = result.terms;
+    gm_sigma = result.gauss_markov_sigma;
+    gm_tau = result.gauss_markov_tau_c;
+    interval_method = "parametric bootstrap, " + std::to_string(result.replicates) +
+                      " replicates, basic interval";
+  } else {
+    intervals = least_squares_intervals(out.fit, points, fit_options.hadamard, options.confidence);
+    interval_method = "weighted least squares covariance (ignores inter-tau correlation)";
+  }
+  for (models::Term term : models::kTerms) {
+    const auto t = static_cast<std::size_t>(term);
+    models::Estimate& e = model.terms[t];
+    e.value = out.fit.terms[t].identified ? out.fit.terms[t].value : 0.0;
+    e.identified = out.fit.terms[t].identified && e.value > 0.0;
+    e.method = "wnnls-oavar";
+    if (e.identified) {
+      e.ci_low = std::min(intervals[t].low, e.value);
+      e.ci_high = std::max(intervals[t].high, e.value);
+      e.interval_method = interval_method;
+    } else {
+      e.ci_low = 0.0;
+      const double bound = unidentified_upper_bound(static_cast<analysis::NoiseTerm>(t), out.fit,
+                                                    points, options.confidence);
+      e.ci_high = std::isfinite(bound) ? bound : 0.0;
+      e.interval_method = std::isfinite(bound)
+                              ? "not identified; upper bound where the term alone would leave "
+                                "a point's interval"
+                              : "not identified; no bound from the fitted range";
+    }
+    model.readoff.slope[t] = 0.0;
+    model.readoff.psd[t] = 0.0;
+  }
+  const auto slope_value = [](const analysis::SlopeReadoffTerm& r) {
+    return r.found ? r.value : 0.0;
+  };
+  const auto psd_value = [](const analysis::PsdReadoffTerm& r) { return r.found ? r.value : 0.0; };
+  model.readoff.slope = {slope_value(out.slope.quantization), slope_value(out.slope.white_noise),
+                         slope_value(out.slope.bias_instability),
+                         slope_value(out.slope.random_walk), slope_value(out.slope.ramp)};
+  model.readoff.psd = {psd_value(out.psd_readoff.quantization),
+                       psd_value(out.psd_readoff.white_noise),
+                       psd_value(out.psd_readoff.bias_instability),
+                       psd_value(out.psd_readoff.random_walk), psd_value(out.psd_readoff.ramp)};
+  for (std::size_t j = 0; j < out.fit.coefficients.gauss_markov.size(); ++j) {
+    models::GaussMarkovEstimate gm;
+    gm.value = out.fit.coefficients.gauss_markov[j];
+    if (j < gm_sigma.size()) {
+      gm.sigma_ci_low = gm_sigma[j].low;
+      gm.sigma_ci_high = gm_sigma[j].high;
+      gm.tau_c_ci_low_s = gm_tau[j].low;
+      gm.tau_c_ci_high_s = gm_tau[j].high;
+    }
+    model.gauss_markov.push_back(gm);
+  }
+  for (const Sinusoid& s : out.fit.coefficients.sinusoids) model.sinusoids.push_back(s);
+
+  // 5. B → Gauss–Markov (theory.md §4.4): every convention, named, and the multi-GM form.
+  model.tau_min_adev_s =
+      model_adev_minimum_tau(out.fit.coefficients, out.fit.tau_min_s, out.fit.tau_max_s);
+  const double b = model.terms[static_cast<std::size_t>(models::Term::bias_instability)].value;
+  if (b > 0.0) {
+    for (models::GmConvention convention :
+         {models::GmConvention::min_adev_at_tau_min, models::GmConvention::peak_match,
+          models::GmConvention::sigma_equals_b}) {
+      // Convention (a) takes the ADEV minimum itself (lifted by N and K, theory.md §8.3), here
+      // the fitted model's.
+      model.bias_instability_gm.push_back(
+          {std::string(models::name_of(convention)),
+           models::gauss_markov_from_bias_instability(
+               b, model.tau_min_adev_s, convention,
+               analysis::model_adev(out.fit.coefficients, model.tau_min_adev_s))});
+    }
+    model.multi_gm = analysis::multi_gm_representation(points, out.fit);
+    NoiseCoefficients with_gm = out.fit.coefficients;
+    with_gm.bias_instability = 0.0;
+    with_gm.gauss_markov.insert(with_gm.gauss_markov.end(), model.multi_gm.begin(),
+                                model.multi_gm.end());
+    model.multi_gm_fraction_inside_ci =
+        analysis::fraction_inside_ci(points, out.fit.used, with_gm, options.confidence);
+  }
+
+  // 6. PSD cross-check verdict.
+  model.psd_check_pass = out.psd_check.pass;
+  model.psd_check_note =
+      std::to_string(out.psd_check.bins_outside) + " of " +
+      std::to_string(out.psd_check.bins_compared) + " PSD bins outside their 99 % interval (" +
+      number_text(out.psd_check.f_min_hz) + "–" + number_text(out.psd_check.f_max_hz) + " Hz)";
+  return out;
+}
+
+}  // namespace imunoise::pipeline

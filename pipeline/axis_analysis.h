@@ -1,0 +1,69 @@
+/// @file
+/// @brief Everything `imunoise analyze` computes for one sensor axis, as pure computation:
+/// OADEV and OHDEV with chi-square intervals, Welch PSD, the weighted NNLS fit of the whole
+/// model (theory.md §4.3) with its parametric-bootstrap intervals, the IEEE-952 and PSD
+/// read-offs for traceability, the B → Gauss–Markov conversions (§4.4) and the PSD
+/// cross-check (§5.4) — assembled into a models::AxisModel.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "analysis/deviation.h"
+#include "analysis/noise_fit.h"
+#include "analysis/psd.h"
+#include "analysis/psd_model.h"
+#include "analysis/slope_readoff.h"
+#include "analysis/tau_grid.h"
+#include "models/noise_model.h"
+
+namespace imunoise::pipeline {
+
+/// Settings shared by every axis of one analysis.
+struct AxisAnalysisOptions {
+  double confidence = 0.95;            ///< level of every reported interval
+  analysis::TauGridSpec grid = analysis::parse_tau_grid("log:10");  ///< τ grid of the curves
+  analysis::FitOptions fit;            ///< fit settings (tau_min_s 0 = automatic low-pass check)
+  bool auto_low_pass = true;           ///< drop leading τ bent below the white line (§4.3)
+  analysis::WelchOptions welch;        ///< PSD settings
+  int psd_bins_per_decade = 10;
+  int bootstrap_replicates = 50;       ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
+  std::uint64_t seed = 1;              ///< bootstrap master seed (axis index is mixed in)
+  unsigned threads = 1;                ///< threads for this axis (deviation τ and bootstrap)
+};
+
+/// The complete result of one axis.
+struct AxisAnalysis {
+  analysis::DeviationCurve oadev;
+  analysis::DeviationCurve ohdev;
+  analysis::Spectrum psd;           ///< log-binned one-sided PSD
+  analysis::FitResult fit;
+  analysis::SlopeReadoff slope;
+  analysis::PsdReadoff psd_readoff;
+  analysis::PsdCrossCheck psd_check;
+  models::AxisModel model;
+};
+
+/// Analyses the rate samples of one axis (SI: rad/s for a gyro, m/s² for an accelerometer)
+/// at sample period TAU0_S. AXIS_INDEX only decorrelates the bootstrap seeds of the axes.
+/// Throws AnalysisError with a clear reason when the record cannot support a fit (too short,
+/// constant, non-finite).
+AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
+                          double tau0_s, int axis_index, const AxisAnalysisOptions& options);
+
+/// Noise type α (S_y ∝ f^α) of the term of C that dominates the AVAR (HADAMARD: HVAR) at τ.
+int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard);
+
+/// Re-derives α, EDF and the interval of every point of CURVE from the model C instead of the
+/// lag-1 identification (which is unreliable with few points at large m).
+void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoefficients& c);
+
+/// The first τ index not affected by a sensor low-pass: leading points whose σ²·τ is below
+/// 0.8× that of the next point (the curve bends under the N/√τ line), looking only at
+/// τ ≤ 8·τ0 where a digital anti-alias filter acts; when any is, the fit starts ten times
+/// above the first unbent τ (the deficit decays like 1/m). Returns the τ to start the fit at.
+double low_pass_tau_min(const analysis::DeviationCurve& oadev);
+
+}  // namespace imunoise::pipeline

@@ -1,0 +1,165 @@
+#include "pipeline/bootstrap.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "analysis/chi_square.h"
+#include "analysis/deviation.h"
+#include "analysis/noise_terms.h"
+#include "common/errors.h"
+#include "models/noise_simulator.h"
+
+namespace imunoise::pipeline {
+
+namespace {
+
+/// Quantile of sorted SAMPLES by linear interpolation (type 7).
+double quantile(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return 0.0;
+  const double h = p * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+/// Basic bootstrap interval of a positive estimate θ̂ from replicate values: in the log
+/// domain [θ̂²/q_hi, θ̂²/q_lo] when q_lo > 0, else linear [2θ̂ − q_hi, 2θ̂ − q_lo] clipped at 0.
+/// The basic (not percentile) form corrects a shift of the estimator's median away from the
+/// truth, which the NNLS fit has for weak terms.
+Interval basic_interval(double estimate, std::vector<double> samples, double confidence) {
+  std::sort(samples.begin(), samples.end());
+  const double tail = 0.5 * (1.0 - confidence);
+  const double q_lo = quantile(samples, tail);
+  const double q_hi = quantile(samples, 1.0 - tail);
+  if (estimate > 0.0 && q_lo > 0.0) {
+    return {estimate * estimate / q_hi, estimate * estimate / q_lo};
+  }
+  return {std::max(0.0, 2.0 * estimate - q_hi), std::max(0.0, 2.0 * estimate - q_lo)};
+}
+
+std::uint64_t replicate_seed(std::uint64_t seed, int replicate) {
+  // splitmix64 of (seed, replicate): distinct, well-mixed master seeds per replicate.
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (static_cast<std::uint64_t>(replicate) + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
+                              std::span<const analysis::FitPoint> points,
+                              std::span<const std::int64_t> m_list, std::int64_t n_samples,
+                              double tau0_s, const analysis::FitOptions& fit_options,
+                              const BootstrapOptions& options) {
+  if (points.size() != m_list.size()) {
+    throw std::invalid_argument("bootstrap_fit: points and m_list differ in size");
+  }
+  if (options.replicates < 2) throw InputError("bootstrap: need at least 2 replicates");
+  if (n_samples < 2 || !(tau0_s > 0.0)) throw InputError("bootstrap: empty record");
+
+  models::ChannelNoiseModel channel = models::channel_model_from(fit.coefficients);
+  const double duration_s = static_cast<double>(n_samples) * tau0_s;
+  const std::size_t gm_count = fit.coefficients.gauss_markov.size();
+
+  struct Replicate {
+    std::array<double, 5> terms{};
+    std::vector<double> gm_sigma, gm_tau;
+    bool ok = false;
+  };
+  std::vector<Replicate> results(static_cast<std::size_t>(options.replicates));
+  std::atomic<int> next{0};
+
+  const auto worker = [&] {
+    std::vector<double> rate(static_cast<std::size_t>(n_samples));
+    std::vector<analysis::FitPoint> replicate_points(points.begin(), points.end());
+    for (int r = next++; r < options.replicates; r = next++) {
+      models::SimulationOptions sim;
+      sim.sample_rate_hz = 1.0 / tau0_s;
+      sim.seed = replicate_seed(options.seed, r);
+      sim.flicker_band = {tau0_s, std::max(duration_s, 2.0 * tau0_s)};
+      models::ChannelSimulator simulator(channel, sim, 0);
+      simulator.next_block(rate);
+      const std::vector<double> phase = analysis::phase_from_rate(rate, tau0_s);
+      for (std::size_t k = 0; k < m_list.size(); ++k) {
+        replicate_points[k].avar =
+            analysis::allan_family_variance(analysis::DeviationType::oadev, phase, m_list[k],
+                                            tau0_s)
+                .variance;
+      }
+      Replicate& out = results[static_cast<std::size_t>(r)];
+      try {
+        const analysis::FitResult refit =
+            analysis::refit_fixed_terms(replicate_points, fit, fit_options);
+        for (std::size_t t = 0; t < 5; ++t) out.terms[t] = refit.terms[t].value;
+        for (std::size_t j = 0; j < gm_count && j < refit.coefficients.gauss_markov.size(); ++j) {
+          out.gm_sigma.push_back(refit.coefficients.gauss_markov[j].sigma);
+          out.gm_tau.push_back(refit.coefficients.gauss_markov[j].tau_c_s);
+        }
+        out.ok = true;
+      } catch (const AnalysisError&) {
+        out.ok = false;  // counted below; a replicate the estimator cannot fit is dropped
+      }
+    }
+  };
+  const unsigned threads = std::max(1u, std::min<unsigned>(options.threads,
+                                                           static_cast<unsigned>(options.replicates)));
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+
+  BootstrapResult result;
+  std::array<std::vector<double>, 5> per_term;
+  std::vector<std::vector<double>> gm_sigma(gm_count), gm_tau(gm_count);
+  for (const Replicate& rep : results) {
+    if (!rep.ok) continue;
+    ++result.replicates;
+    result.term_samples.push_back(rep.terms);
+    for (std::size_t t = 0; t < 5; ++t) per_term[t].push_back(rep.terms[t]);
+    if (rep.gm_sigma.size() == gm_count) {
+      for (std::size_t j = 0; j < gm_count; ++j) {
+        gm_sigma[j].push_back(rep.gm_sigma[j]);
+        gm_tau[j].push_back(rep.gm_tau[j]);
+      }
+    }
+  }
+  if (result.replicates < 2) {
+    throw AnalysisError("bootstrap: the fit failed on " +
+                        std::to_string(options.replicates - result.replicates) + " of " +
+                        std::to_string(options.replicates) + " simulated replicates");
+  }
+  for (std::size_t t = 0; t < 5; ++t) {
+    result.terms[t] = basic_interval(fit.terms[t].value, per_term[t], options.confidence);
+  }
+  for (std::size_t j = 0; j < gm_count; ++j) {
+    result.gauss_markov_sigma.push_back(basic_interval(fit.coefficients.gauss_markov[j].sigma,
+                                                       gm_sigma[j], options.confidence));
+    result.gauss_markov_tau_c.push_back(basic_interval(fit.coefficients.gauss_markov[j].tau_c_s,
+                                                       gm_tau[j], options.confidence));
+  }
+  return result;
+}
+
+double unidentified_upper_bound(analysis::NoiseTerm term, const analysis::FitResult& fit,
+                                std::span<const analysis::FitPoint> points, double confidence) {
+  // For each used point k: model_k + c²φ_k ≤ σ̂²_k·ν/χ²_{ν,(1−p)/2} (the upper end of the
+  // chi-square interval of σ² at the point). The tightest point bounds c.
+  double bound = std::numeric_limits<double>::infinity();
+  const double tail = 0.5 * (1.0 - confidence);
+  for (std::size_t k : fit.used) {
+    const analysis::FitPoint& p = points[k];
+    if (!(p.edf > 0.0) || !(p.avar > 0.0)) continue;
+    const double upper = p.avar * p.edf / analysis::chi_square_quantile(tail, p.edf);
+    const double room = upper - analysis::model_avar(fit.coefficients, p.tau_s);
+    const double phi = analysis::term_avar_basis(term, p.tau_s);
+    if (!(phi > 0.0)) continue;
+    bound = std::min(bound, std::sqrt(std::max(room, 0.0) / phi));
+  }
+  return bound;
+}
+
+}  // namespace imunoise::pipeline

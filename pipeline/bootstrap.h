@@ -1,0 +1,63 @@
+/// @file
+/// @brief Parametric bootstrap of the noise fit (theory.md §4.3 "Parameter uncertainties"):
+/// simulate the fitted model at the recording's length and rate, re-run the same OAVAR and the
+/// same fixed-structure fit on each replicate, and turn the spread into 95 % intervals. It
+/// accounts for the correlation between τ points that (ΦᵀWΦ)⁻¹ ignores (theory.md §3.5).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "analysis/noise_fit.h"
+#include "common/noise_coefficients.h"
+
+namespace imunoise::pipeline {
+
+/// Settings of one bootstrap.
+struct BootstrapOptions {
+  int replicates = 50;        ///< number of simulated records
+  std::uint64_t seed = 1;     ///< master seed; replicate r uses (seed, r)
+  double confidence = 0.95;   ///< two-sided level of the intervals
+  unsigned threads = 1;       ///< worker threads across replicates
+};
+
+/// Interval of one scalar parameter.
+struct Interval {
+  double low = 0.0;
+  double high = 0.0;
+};
+
+/// Bootstrap intervals of every fitted parameter.
+struct BootstrapResult {
+  int replicates = 0;
+  std::array<Interval, 5> terms;             ///< Q N B K R, in analysis::NoiseTerm order
+  std::vector<Interval> gauss_markov_sigma;  ///< per fitted GM term (same order as the fit)
+  std::vector<Interval> gauss_markov_tau_c;  ///< [s]
+  /// Replicate values per term (for diagnostics and tests), replicates × 5.
+  std::vector<std::array<double, 5>> term_samples;
+};
+
+/// Bootstraps FIT (made by analysis::fit_noise_model on POINTS, whose τ are m·τ0 with the
+/// averaging factors M_LIST) for a record of N_SAMPLES rate samples at τ0 = TAU0_S.
+///
+/// Each replicate simulates FIT's coefficients with models::ChannelSimulator (flicker band
+/// [τ0, record length]), computes the OAVAR at M_LIST, reuses the EDF of POINTS (the weights
+/// are model-based, theory.md §4.3), and refits with analysis::refit_fixed_terms. The interval
+/// of an identified term is the basic bootstrap interval in the log domain,
+/// [θ̂²/q_hi, θ̂²/q_lo] (a scale parameter's error is multiplicative), or in the linear domain
+/// clipped at 0 when a replicate quantile is 0.
+BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
+                              std::span<const analysis::FitPoint> points,
+                              std::span<const std::int64_t> m_list, std::int64_t n_samples,
+                              double tau0_s, const analysis::FitOptions& fit_options,
+                              const BootstrapOptions& options);
+
+/// Upper bound of a term the fit did not identify: the smallest coefficient c for which the
+/// fitted model plus that term alone, c²·φ(τ), exceeds the upper end of some used point's
+/// interval at CONFIDENCE (chi-square with the point's EDF). Infinity if no point bounds it.
+double unidentified_upper_bound(analysis::NoiseTerm term, const analysis::FitResult& fit,
+                                std::span<const analysis::FitPoint> points, double confidence);
+
+}  // namespace imunoise::pipeline

@@ -1,0 +1,113 @@
+/// @file
+/// @brief End-to-end tests of `imunoise analyze` (tools/cmd_analyze.cpp): a simulated record
+/// in, model.yaml / allan.csv / psd.csv out with the truth inside the intervals; bad records
+/// stop with one clear line, a non-zero exit and no output files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "common/units.h"
+#include "io/noise_model_yaml.h"
+#include "models/noise_model.h"
+#include "test_support.h"
+
+namespace imunoise::test {
+namespace {
+
+TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
+  const auto dir = make_temp_dir("analyze_cli");
+  const auto model_file = dir / "truth.yaml";
+  // Gyro: N = 0.4 deg/√h, K = 84.24 deg/h/√h (theory.md §8.2); accel: VRW only.
+  write_text(model_file,
+             "sample_rate_hz: 50\n"
+             "gyro:\n  arw_rad_per_sqrt_s: 1.16355e-4\n  rrw_rad_per_s_sqrt_s: 6.80678e-6\n"
+             "accel:\n  vrw_m_per_s_sqrt_s: 1.471e-3\n"
+             "  z: {specific_force_m_per_s2: -9.80665}\n");
+  const auto rec = dir / "rec.csv";
+  ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 1h --seed 3 -o " +
+                         rec.string())
+                .exit_code,
+            0);
+  const auto out = dir / "out";
+  const CommandResult r = run_imunoise("analyze " + rec.string() + " -o " + out.string() +
+                                       " --bootstrap 20 --truth " + model_file.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("white_noise [deg/sqrt(h)]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("true 0.4"), std::string::npos) << r.out;
+  ASSERT_TRUE(std::filesystem::exists(out / "model.yaml"));
+  const models::NoiseModel model = io::load_model_yaml((out / "model.yaml").string());
+  // The rate comes from the median time-stamp interval as printed in the CSV.
+  EXPECT_NEAR(model.sample_rate_hz, 50.0, 1e-9);
+  EXPECT_EQ(model.samples, 180000);
+  ASSERT_EQ(model.axes.size(), 6u);
+  const models::AxisModel* gx = model.find_axis("gyro_x");
+  ASSERT_NE(gx, nullptr);
+  const auto& n = gx->terms[static_cast<std::size_t>(models::Term::white_noise)];
+  EXPECT_TRUE(n.identified);
+  EXPECT_LE(n.ci_low, 1.16355e-4);
+  EXPECT_GE(n.ci_high, 1.16355e-4);
+  const models::AxisModel* az = model.find_axis("accel_z");
+  ASSERT_NE(az, nullptr);
+  EXPECT_FALSE(az->gyro);
+  EXPECT_NEAR(az->terms[1].value / 1.471e-3, 1.0, 0.05);  // the gravity constant is not noise
+
+  const auto allan = read_csv_rows(out / "allan.csv");
+  ASSERT_GT(allan.size(), 10u);
+  EXPECT_EQ(allan[0][0], "m");
+  EXPECT_EQ(allan[0][2], "gyro_x_oadev_rad_per_s");
+  bool accel_unit = false;
+  for (const auto& column : allan[0]) accel_unit |= column == "accel_z_oadev_m_per_s2";
+  EXPECT_TRUE(accel_unit);
+  const auto psd = read_csv_rows(out / "psd.csv");
+  ASSERT_GT(psd.size(), 10u);
+  EXPECT_EQ(psd[0][1], "frequency_hz");
+  EXPECT_EQ(psd[1][3], "rad2_per_s2_per_hz");
+}
+
+TEST(AnalyzeCli, ConstantChannelStopsWithAClearMessageAndNoOutput) {
+  const auto dir = make_temp_dir("analyze_constant");
+  const auto rec = dir / "rec.csv";
+  std::ofstream csv(rec);
+  csv << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n";
+  for (int i = 0; i < 2000; ++i) csv << i * 0.01 << ",0.001,0.001,0.001\n";
+  csv.close();
+  const CommandResult r =
+      run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("constant"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
+}
+
+TEST(AnalyzeCli, TooShortRecordStopsWithAClearMessage) {
+  const auto dir = make_temp_dir("analyze_short");
+  const auto rec = dir / "rec.csv";
+  std::ofstream csv(rec);
+  csv << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n0,0.1,0.1,0.1\n"
+         "0.01,0.2,0.1,0.1\n0.02,0.15,0.1,0.1\n0.03,0.3,0.1,0.1\n";
+  csv.close();
+  const CommandResult r =
+      run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("too few samples"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
+}
+
+TEST(AnalyzeCli, AllNanChannelIsRefusedNotWrittenAsNan) {
+  const auto dir = make_temp_dir("analyze_nan");
+  const auto rec = dir / "rec.csv";
+  std::ofstream csv(rec);
+  csv << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n";
+  for (int i = 0; i < 2000; ++i) csv << i * 0.01 << ",nan,nan,nan\n";
+  csv.close();
+  const CommandResult r =
+      run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_FALSE(r.err.empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
+}
+
+}  // namespace
+}  // namespace imunoise::test
