@@ -243,7 +243,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
     gm_sigma = result.gauss_markov_sigma;
     gm_tau = result.gauss_markov_tau_c;
     interval_method = "parametric bootstrap, " + std::to_string(result.replicates) +
-                      " replicates, basic interval";
+                      " replicates, bias-corrected normal interval of the log";
   } else {
     intervals = least_squares_intervals(out.fit, points, fit_options.hadamard, options.confidence);
     interval_method = "weighted least squares covariance (ignores inter-tau correlation)";

@@ -1,7 +1,8 @@
 /// @file
 /// @brief Parametric bootstrap of the noise fit (theory.md §4.3 "Parameter uncertainties"):
 /// simulate the fitted model at the recording's length and rate, re-run the same OAVAR and the
-/// same fixed-structure fit on each replicate, and turn the spread into 95 % intervals. It
+/// same fixed-structure fit on each replicate, and turn the spread into 95 % intervals
+/// (bias-corrected normal intervals on the log scale, see bootstrap.cpp). It
 /// accounts for the correlation between τ points that (ΦᵀWΦ)⁻¹ ignores (theory.md §3.5).
 #pragma once
 
@@ -45,9 +46,9 @@ struct BootstrapResult {
 /// Each replicate simulates FIT's coefficients with models::ChannelSimulator (flicker band
 /// [τ0, record length]), computes the OAVAR at M_LIST, reuses the EDF of POINTS (the weights
 /// are model-based, theory.md §4.3), and refits with analysis::refit_fixed_terms. The interval
-/// of an identified term is the basic bootstrap interval in the log domain,
-/// [θ̂²/q_hi, θ̂²/q_lo] (a scale parameter's error is multiplicative), or in the linear domain
-/// clipped at 0 when a replicate quantile is 0.
+/// of an identified term is the bias-corrected normal interval of ln θ (a scale parameter's
+/// error is multiplicative) with Student's t for the replicate count, or the same in the
+/// linear domain clipped at 0 when a replicate is 0.
 BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               std::span<const analysis::FitPoint> points,
                               std::span<const std::int64_t> m_list, std::int64_t n_samples,

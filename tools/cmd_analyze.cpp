@@ -240,7 +240,8 @@ void print_summary(const models::NoiseModel& model,
   std::cout << "imunoise analyze: " << model.source << " — " << model.samples << " samples at "
             << fixed(model.sample_rate_hz, 6) << " Hz (" << fixed(model.duration_s / 3600.0, 4)
             << " h); coefficients with " << fixed(100.0 * model.confidence, 3)
-            << " % intervals, '-' = not identified (upper bound)\n";
+            << " % intervals, '-' = not identified (upper bound);\n"
+            << "ieee952 = the graphical slope read-off of the OADEV curve, for traceability\n";
   for (bool gyro : {true, false}) {
     std::cout << "\n" << (gyro ? "gyro" : "accel") << "\n";
     for (models::Term term : models::kTerms) {
@@ -251,6 +252,8 @@ void print_summary(const models::NoiseModel& model,
         if (axis.gyro != gyro) continue;
         const models::Estimate& e = axis.terms[static_cast<std::size_t>(term)];
         std::cout << "    " << axis.name << ": " << estimate_text(e, unit);
+        const double slope = axis.readoff.slope[static_cast<std::size_t>(term)];
+        if (slope > 0.0) std::cout << "   ieee952 " << fixed(slope * unit.factor, 4);
         if (truth) {
           const std::size_t channel = static_cast<std::size_t>(
               std::find(kChannelNames.begin(), kChannelNames.end(), axis.name) -
