@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -22,6 +23,7 @@
 #include "common/errors.h"
 #include "common/units.h"
 #include "io/atomic_output.h"
+#include "io/noise_model_yaml.h"
 #include "io/simulation_model.h"
 #include "models/noise_simulator.h"
 #include "tools/commands.h"
@@ -136,11 +138,44 @@ CLI::Validator number_check(bool strictly_positive) {
       strictly_positive ? "NUMBER>0" : "NUMBER>=0");
 }
 
+/// True when PATH is a fitted model.yaml (native schema) rather than a simulator model file.
+bool is_native_model_file(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int i = 0; i < 64 && std::getline(in, line); ++i) {
+    if (line.rfind("format:", 0) == 0) return line.find(io::kModelYamlFormat) != std::string::npos;
+  }
+  return false;
+}
+
+/// A fitted model.yaml as a simulation set-up: each of gyro_x … accel_z simulated with its
+/// point estimates (terms not identified are 0; fitted GM terms and sinusoids included). No
+/// bias or gravity: the fitted model describes the noise only.
+SimulationSetup setup_from_fitted_model(const std::string& path) {
+  const models::NoiseModel fitted = io::load_model_yaml(path);
+  SimulationSetup setup;
+  setup.source = path;
+  setup.name = "fitted model of " + fitted.source;
+  setup.sample_rate_hz = fitted.sample_rate_hz;
+  for (std::size_t a = 0; a < 3; ++a) {
+    for (const bool gyro : {true, false}) {
+      const std::string name = std::string(gyro ? "gyro_" : "accel_") + std::string(kAxes[a]);
+      const models::AxisModel* axis = fitted.find_axis(name);
+      if (axis == nullptr) continue;
+      (gyro ? setup.gyro : setup.accel)[a].coefficients = axis->coefficients();
+    }
+  }
+  return setup;
+}
+
 void run_simulate(const SimulateArgs& args) {
   // 1. Load and merge; every check happens before the output file is opened.
   SimulationSetup setup;
   setup.source = "command-line flags";
-  if (!args.model_path.empty()) setup = io::load_simulation_model(args.model_path);
+  if (!args.model_path.empty()) {
+    setup = is_native_model_file(args.model_path) ? setup_from_fitted_model(args.model_path)
+                                                  : io::load_simulation_model(args.model_path);
+  }
   for (const auto& [option, apply] : args.overrides) {
     if (option->count() > 0) apply(setup);
   }

@@ -61,6 +61,12 @@ TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
   bool accel_unit = false;
   for (const auto& column : allan[0]) accel_unit |= column == "accel_z_oadev_m_per_s2";
   EXPECT_TRUE(accel_unit);
+  // The fitted model.yaml drives the simulator directly (noise only, the fitted terms).
+  const CommandResult sim = run_imunoise("simulate " + (out / "model.yaml").string() +
+                                         " --duration 60s -o " + (dir / "refit.csv").string());
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto refit = read_csv_rows(dir / "refit.csv");
+  EXPECT_GT(refit.size(), 3000u);  // 60 s at the model's 50 Hz, plus the header
   const auto psd = read_csv_rows(out / "psd.csv");
   ASSERT_GT(psd.size(), 10u);
   EXPECT_EQ(psd[0][1], "frequency_hz");
