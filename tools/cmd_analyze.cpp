@@ -59,6 +59,7 @@ struct AnalyzeArgs {
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;
   std::string truth_path;
+  std::vector<double> sinusoid_hz;
   bool quiet = false;
 };
 
@@ -321,6 +322,13 @@ void run_analyze(const AnalyzeArgs& args) {
   options.fit.gauss_markov =
       args.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
   options.fit.tau_min_s = args.tau_min_s;
+  for (double f : args.sinusoid_hz) {
+    if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
+      throw InputError("--sinusoid-hz: " + shortest(f) + " Hz is not in (0, Nyquist = " +
+                       shortest(0.5 / tau0_s) + " Hz)");
+    }
+  }
+  options.fit.sinusoid_frequencies_hz = args.sinusoid_hz;
   options.fit.tau_max_s = args.tau_max_s;
   options.auto_low_pass = !args.no_low_pass_check;
 
@@ -406,6 +414,10 @@ void register_analyze_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)");
   cmd->add_flag("--gauss-markov", args->gauss_markov,
                 "also fit first-order Gauss-Markov terms (grid of correlation times, refined)");
+  cmd->add_option("--sinusoid-hz", args->sinusoid_hz,
+                  "candidate sinusoid frequencies F1,F2,... [Hz] (e.g. lines seen in psd.csv); "
+                  "each amplitude is fitted and kept only if the data support it")
+      ->delimiter(',');
   cmd->add_option("--tau-min", args->tau_min_s, "fit only tau >= this [s]");
   cmd->add_option("--tau-max", args->tau_max_s, "fit only tau <= this [s]");
   cmd->add_flag("--no-low-pass-check", args->no_low_pass_check,

@@ -113,6 +113,22 @@ TEST(AxisAnalysis, LowPassRegionIsDroppedFromTheFit) {
   EXPECT_NEAR(low.model.terms[1].value / truth.white_noise, 1.0, 0.05);
 }
 
+TEST(AxisAnalysis, CandidateSinusoidIsFittedWithItsAmplitude) {
+  NoiseCoefficients truth;
+  truth.white_noise = 1e-3;
+  // A 0.1 Hz line of amplitude A: its AVAR A²sin⁴(πfτ)/(πfτ)² peaks near τ = 3.7 s at
+  // ≈ 0.52·A² = 5e-7, 100× the white level N²/τ there, so the fit must see it.
+  truth.sinusoids.push_back({1e-3, 0.1, 0.3});
+  const std::vector<double> rate = simulate(truth, 50.0, 3600.0, 9);
+  AxisAnalysisOptions options;
+  options.bootstrap_replicates = 0;
+  options.fit.sinusoid_frequencies_hz = {0.1};
+  const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+  ASSERT_EQ(a.model.sinusoids.size(), 1u);
+  EXPECT_NEAR(std::abs(a.model.sinusoids[0].amplitude) / 1e-3, 1.0, 0.1);
+  EXPECT_NEAR(a.model.terms[1].value / truth.white_noise, 1.0, 0.05);
+}
+
 TEST(AxisAnalysis, BadRecordsGiveClearErrors) {
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
