@@ -180,6 +180,10 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   dev.confidence = options.confidence;
   dev.threads = options.threads;
   dev.type = analysis::DeviationType::oadev;
+  // No lag-1 noise identification here: the noise type of every point is re-derived from the
+  // fitted model below (apply_model_noise_type), so the first pass only needs a provisional
+  // EDF — white FM (α = 0), capped per point by fit_points. This skips ~30 % of the work.
+  dev.alpha = 0;
   const std::vector<std::int64_t> m_oadev =
       analysis::averaging_factors(options.grid, dev.type, n_phase);
   out.oadev = analysis::compute_deviation(phase, tau0_s, m_oadev, dev);
