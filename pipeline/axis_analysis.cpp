@@ -294,8 +294,17 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
       gm.sigma_ci_high = gm_sigma[j].high;
       gm.tau_c_ci_low_s = gm_tau[j].low;
       gm.tau_c_ci_high_s = gm_tau[j].high;
+    } else {
+      // No bootstrap: no interval for the nonlinear GM parameters; an empty interval at the
+      // estimate says so (and the fit note spells it out).
+      gm.sigma_ci_low = gm.sigma_ci_high = gm.value.sigma;
+      gm.tau_c_ci_low_s = gm.tau_c_ci_high_s = gm.value.tau_c_s;
     }
     model.gauss_markov.push_back(gm);
+  }
+  if (!model.gauss_markov.empty() && gm_sigma.empty()) {
+    model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") +
+                      "Gauss-Markov intervals need the bootstrap (--bootstrap N)";
   }
   for (const Sinusoid& s : out.fit.coefficients.sinusoids) model.sinusoids.push_back(s);
 
