@@ -55,9 +55,10 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               double tau0_s, const analysis::FitOptions& fit_options,
                               const BootstrapOptions& options);
 
-/// Upper bound of a term the fit did not identify: the smallest coefficient c for which the
-/// fitted model plus that term alone, c²·φ(τ), exceeds the upper end of some used point's
-/// interval at CONFIDENCE (chi-square with the point's EDF). Infinity if no point bounds it.
+/// Upper bound of a term the fit did not identify (profile bound): the coefficient c at which
+/// forcing the term to c (the other identified terms re-fitted by NNLS with the fit's weights)
+/// raises the gamma deviance by χ²₁(CONFIDENCE)·n_used/n_eff — the correlation-corrected
+/// scale of the fit's model selection. Infinity if no c within reach of the data does.
 double unidentified_upper_bound(analysis::NoiseTerm term, const analysis::FitResult& fit,
                                 std::span<const analysis::FitPoint> points, double confidence);
 
