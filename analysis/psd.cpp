@@ -14,16 +14,10 @@
 #include <utility>
 
 #include "common/errors.h"
+#include "common/fftw_planner_lock.h"
 
 namespace imunoise::analysis {
 namespace {
-
-/// FFTW's planner is not thread-safe (fftw_execute on distinct plans is): every plan
-/// creation and destruction in this file holds this mutex.
-std::mutex& fftw_planner_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 struct FftwFree {
   void operator()(void* p) const { fftw_free(p); }

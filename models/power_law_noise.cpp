@@ -14,6 +14,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/fftw_planner_lock.h"
 
 namespace imunoise::models {
 namespace {
@@ -26,13 +27,6 @@ void check_alpha(int alpha, const char* where) {
 
 /// Below this length the O(n²) direct convolution is cheaper than planning FFTs.
 constexpr std::size_t kDirectConvolutionMax = 256;
-
-/// FFTW's planner is not thread-safe; plan creation and destruction are serialised here
-/// (fftw_execute on distinct plans is thread-safe).
-std::mutex& fftw_planner_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 struct FftwFree {
   void operator()(void* p) const { fftw_free(p); }
