@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/number_text.h"
 #include "io/atomic_output.h"
 
 namespace imunoise::io {
@@ -104,12 +105,6 @@ const SensorKeys& keys_for(bool gyro) { return gyro ? kGyroKeys : kAccelKeys; }
 // Writing
 // ---------------------------------------------------------------------------------------------
 
-/// Shortest text that reads back to the same double (std::to_chars, no precision given).
-std::string number_text(double value) {
-  std::array<char, 32> buffer{};  // the longest shortest form has 24 characters
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
 
 std::string integer_text(std::int64_t value) {
   std::array<char, 24> buffer{};
@@ -165,7 +160,7 @@ class FlowMap {
     text_.append(text_.size() == 1 ? "" : ", ").append(key).append(": ").append(value_text);
     return *this;
   }
-  FlowMap& number(std::string_view key, double value) { return raw(key, number_text(value)); }
+  FlowMap& number(std::string_view key, double value) { return raw(key, shortest_number_text(value)); }
   FlowMap& boolean(std::string_view key, bool value) { return raw(key, value ? "true" : "false"); }
   FlowMap& string(std::string_view key, std::string_view value) {
     return raw(key, double_quoted(value));
@@ -192,11 +187,11 @@ class Writer {
     line(0, "software: " + double_quoted(model.software));
     line(0, "sensor_name: " + double_quoted(model.sensor_name));
     line(0, "source: " + double_quoted(model.source));
-    line(0, "sample_rate_hz: " + number_text(model.sample_rate_hz));
-    line(0, "duration_s: " + number_text(model.duration_s));
+    line(0, "sample_rate_hz: " + shortest_number_text(model.sample_rate_hz));
+    line(0, "duration_s: " + shortest_number_text(model.duration_s));
     line(0, "samples: " + integer_text(model.samples));
     line(0,
-         "confidence: " + number_text(model.confidence) + "  # level of every [ci_low, ci_high]");
+         "confidence: " + shortest_number_text(model.confidence) + "  # level of every [ci_low, ci_high]");
     if (model.data_quality.empty()) {
       line(0, "data_quality: []");
     } else {
@@ -281,7 +276,7 @@ class Writer {
       items.push_back(FlowMap().number(keys.sigma, gm.sigma).number(kTauC, gm.tau_c_s).text());
     }
     list(6, kMultiGmTerms, items, "");
-    line(6, std::string(kMultiGmFraction) + ": " + number_text(axis.multi_gm_fraction_inside_ci));
+    line(6, std::string(kMultiGmFraction) + ": " + shortest_number_text(axis.multi_gm_fraction_inside_ci));
 
     line(4, std::string(kFit) + ": " +
                 FlowMap()
@@ -698,8 +693,8 @@ class Reader {
     const YAML::Node* at = map.find(high_key);
     if (at == nullptr) at = map.find(low_key);
     fail(at != nullptr ? *at : map.node(), map.path(),
-         std::string(low_key) + " (" + number_text(low) + ") is greater than " +
-             std::string(high_key) + " (" + number_text(high) + ")");
+         std::string(low_key) + " (" + shortest_number_text(low) + ") is greater than " +
+             std::string(high_key) + " (" + shortest_number_text(high) + ")");
   }
 
   /// Calls READ_ITEM(item, "PATH[i]") for each item of the list NODE.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/number_text.h"
 #include "common/units.h"
 
 namespace imunoise::io {
@@ -178,11 +179,6 @@ constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 
 const SensorSchema& schema_of(Sensor sensor) { return sensor == Sensor::kGyro ? kGyro : kAccel; }
 
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 /// "a|b|c": the keys of Q.
 std::string alternatives(const Quantity& q) {
@@ -502,7 +498,7 @@ std::string si_terms_text(const SimulationAxis& axis, Sensor sensor) {
   const SensorSchema& schema = schema_of(sensor);
   std::string text;
   const auto add = [&text](std::string_view key, double value) {
-    text.append(key).append("=").append(number_text(value));
+    text.append(key).append("=").append(shortest_number_text(value));
   };
   for (const ScalarTerm& term : schema.scalars) {
     const double value = field_of(axis, term.field);

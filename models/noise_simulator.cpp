@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "common/errors.h"
+#include "common/number_text.h"
 
 namespace imunoise::models {
 
@@ -28,23 +29,18 @@ constexpr std::uint32_t kFlickerStreamBase = 2000;
 /// Distinguishes this simulator's streams from any other user of the same seed ("imunoise").
 constexpr std::uint64_t kSalt = 0x696d756e6f697365ULL;
 
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 void check_non_negative(double value, std::string_view where, std::string_view field) {
   if (!std::isfinite(value) || value < 0.0) {
     throw InputError(std::string(where) + "." + std::string(field) +
-                     ": must be finite and >= 0 (got " + number_text(value) + ")");
+                     ": must be finite and >= 0 (got " + shortest_number_text(value) + ")");
   }
 }
 
 void check_finite(double value, std::string_view where, std::string_view field) {
   if (!std::isfinite(value)) {
     throw InputError(std::string(where) + "." + std::string(field) + ": must be finite (got " +
-                     number_text(value) + ")");
+                     shortest_number_text(value) + ")");
   }
 }
 
@@ -210,7 +206,7 @@ void validate_channel_model(const ChannelNoiseModel& model, std::string_view whe
     const double tau_c = model.gauss_markov[j].tau_c_s;
     if (!std::isfinite(tau_c) || !(tau_c > 0.0)) {
       throw InputError(std::string(where) + "." + field + ".tau_c_s: must be finite and > 0 (got " +
-                       number_text(tau_c) + ")");
+                       shortest_number_text(tau_c) + ")");
     }
   }
   for (std::size_t j = 0; j < model.sinusoids.size(); ++j) {
@@ -236,8 +232,8 @@ std::vector<GaussMarkovTerm> flicker_gauss_markov_terms(double bias_instability,
   check_non_negative(bias_instability, "flicker", "bias_instability");
   if (!std::isfinite(tau_min_s) || !std::isfinite(tau_max_s) || !(tau_min_s > 0.0) ||
       !(tau_max_s > tau_min_s)) {
-    throw InputError("flicker band: need 0 < tau_min_s < tau_max_s (got " + number_text(tau_min_s) +
-                     ", " + number_text(tau_max_s) + ")");
+    throw InputError("flicker band: need 0 < tau_min_s < tau_max_s (got " + shortest_number_text(tau_min_s) +
+                     ", " + shortest_number_text(tau_max_s) + ")");
   }
   std::vector<GaussMarkovTerm> terms;
   if (bias_instability == 0.0) return terms;
@@ -254,7 +250,7 @@ ChannelSimulator::ChannelSimulator(const ChannelNoiseModel& model, const Simulat
   validate_channel_model(model, "channel " + std::to_string(channel_index));
   if (!std::isfinite(options.sample_rate_hz) || !(options.sample_rate_hz > 0.0)) {
     throw InputError("simulation: sample_rate_hz must be finite and > 0 (got " +
-                     number_text(options.sample_rate_hz) + ")");
+                     shortest_number_text(options.sample_rate_hz) + ")");
   }
   sample_rate_hz_ = options.sample_rate_hz;
   tau0_s_ = 1.0 / sample_rate_hz_;

@@ -27,6 +27,7 @@
 #include "analysis/noise_terms.h"
 #include "analysis/psd_model.h"
 #include "common/errors.h"
+#include "common/number_text.h"
 #include "common/units.h"
 #include "io/atomic_output.h"
 #include "io/csv_reader.h"
@@ -63,11 +64,6 @@ struct AnalyzeArgs {
   bool quiet = false;
 };
 
-std::string shortest(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 std::string fixed(double value, int digits = 4) {
   std::ostringstream out;
@@ -109,7 +105,7 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
       out.push_back(c.name + ": " + std::to_string(c.beyond_full_scale) +
                     " samples at or beyond the full scale");
     }
-    if (c.lsb) out.push_back(c.name + ": output quantized, LSB " + shortest(*c.lsb) + " " + c.unit);
+    if (c.lsb) out.push_back(c.name + ": output quantized, LSB " + shortest_number_text(*c.lsb) + " " + c.unit);
   }
   return out;
 }
@@ -179,7 +175,7 @@ void write_allan_csv(const std::string& path, const std::vector<pipeline::AxisAn
   for (const auto& [m, unused] : rows) {
     (void)unused;
     const double tau = static_cast<double>(m) * tau0_s;
-    out << m << "," << shortest(tau);
+    out << m << "," << shortest_number_text(tau);
     for (const auto& a : axes) {
       const auto find = [m = m](const analysis::DeviationCurve& c) -> const analysis::DeviationPoint* {
         for (const auto& p : c.points) {
@@ -188,15 +184,15 @@ void write_allan_csv(const std::string& path, const std::vector<pipeline::AxisAn
         return nullptr;
       };
       if (const auto* p = find(a.oadev)) {
-        out << "," << shortest(p->value) << "," << shortest(p->ci_low) << ","
-            << shortest(p->ci_high) << "," << shortest(p->edf) << "," << p->alpha;
+        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low) << ","
+            << shortest_number_text(p->ci_high) << "," << shortest_number_text(p->edf) << "," << p->alpha;
       } else {
         out << ",,,,,";
       }
-      out << "," << shortest(std::sqrt(analysis::model_avar(a.fit.coefficients, tau)));
+      out << "," << shortest_number_text(std::sqrt(analysis::model_avar(a.fit.coefficients, tau)));
       if (const auto* p = find(a.ohdev)) {
-        out << "," << shortest(p->value) << "," << shortest(p->ci_low) << ","
-            << shortest(p->ci_high);
+        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low) << ","
+            << shortest_number_text(p->ci_high);
       } else {
         out << ",,,";
       }
@@ -218,9 +214,9 @@ void write_psd_csv(const std::string& path, const std::vector<pipeline::AxisAnal
     const std::string unit = psd_unit_suffix(a.model.gyro);
     for (std::size_t i = 0; i < a.psd.frequency_hz.size(); ++i) {
       const double f = a.psd.frequency_hz[i];
-      out << a.model.name << "," << shortest(f) << "," << shortest(a.psd.density[i]) << ","
-          << unit << "," << shortest(a.psd.dof[i]) << ","
-          << shortest(analysis::model_psd_one_sided(a.fit.coefficients, f, tau0_s)) << "\n";
+      out << a.model.name << "," << shortest_number_text(f) << "," << shortest_number_text(a.psd.density[i]) << ","
+          << unit << "," << shortest_number_text(a.psd.dof[i]) << ","
+          << shortest_number_text(analysis::model_psd_one_sided(a.fit.coefficients, f, tau0_s)) << "\n";
     }
   }
   file.commit();
@@ -285,7 +281,7 @@ void print_summary(const models::NoiseModel& model,
 void run_analyze(const AnalyzeArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   if (!(args.confidence > 0.0 && args.confidence < 1.0)) {
-    throw InputError("--confidence: expected a level in (0, 1), got " + shortest(args.confidence));
+    throw InputError("--confidence: expected a level in (0, 1), got " + shortest_number_text(args.confidence));
   }
   if (args.bootstrap == 1 || args.bootstrap < 0) {
     throw InputError("--bootstrap: expected 0 (off) or at least 2 replicates");
@@ -324,8 +320,8 @@ void run_analyze(const AnalyzeArgs& args) {
   options.fit.tau_min_s = args.tau_min_s;
   for (double f : args.sinusoid_hz) {
     if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
-      throw InputError("--sinusoid-hz: " + shortest(f) + " Hz is not in (0, Nyquist = " +
-                       shortest(0.5 / tau0_s) + " Hz)");
+      throw InputError("--sinusoid-hz: " + shortest_number_text(f) + " Hz is not in (0, Nyquist = " +
+                       shortest_number_text(0.5 / tau0_s) + " Hz)");
     }
   }
   options.fit.sinusoid_frequencies_hz = args.sinusoid_hz;

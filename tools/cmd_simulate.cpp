@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/number_text.h"
 #include "common/units.h"
 #include "io/atomic_output.h"
 #include "io/noise_model_yaml.h"
@@ -38,11 +39,6 @@ constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 /// model file, or "command-line flags" without one.
 using SimulationSetup = io::SimulationModelFile;
 
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 /// Parses "2h", "30min", "600s" or "600" (seconds) into seconds.
 double parse_duration_s(const std::string& text) {
@@ -97,9 +93,9 @@ void write_header(std::ostream& out, const SimulationSetup& setup, const Simulat
   out << "# imunoise simulate: synthetic stationary IMU recording, SI units\n";
   out << "# model: " << setup.source;
   if (!setup.name.empty()) out << " (" << setup.name << ")";
-  out << "\n# seed: " << args.seed << "\n# sample_rate_hz: " << number_text(rate_hz)
-      << "\n# duration_s: " << number_text(duration_s) << "\n# samples: " << samples
-      << "\n# flicker_band_s: [" << number_text(band[0]) << ", " << number_text(band[1]) << "]\n";
+  out << "\n# seed: " << args.seed << "\n# sample_rate_hz: " << shortest_number_text(rate_hz)
+      << "\n# duration_s: " << shortest_number_text(duration_s) << "\n# samples: " << samples
+      << "\n# flicker_band_s: [" << shortest_number_text(band[0]) << ", " << shortest_number_text(band[1]) << "]\n";
   const auto write_sensor = [&](std::string_view sensor_name, io::Sensor sensor,
                                 const std::array<io::SimulationAxis, 3>& axes) {
     for (std::size_t a = 0; a < 3; ++a) {
@@ -189,7 +185,7 @@ void run_simulate(const SimulateArgs& args) {
   }
   const double count = std::round(duration_s * rate_hz);
   if (!(count >= 1.0) || count > 1e11) {
-    throw InputError("--duration × --rate gives " + number_text(count) +
+    throw InputError("--duration × --rate gives " + shortest_number_text(count) +
                      " samples; expected 1 to 1e11");
   }
   const auto samples = static_cast<std::int64_t>(count);
@@ -239,8 +235,8 @@ void run_simulate(const SimulateArgs& args) {
     done += static_cast<std::int64_t>(n);
   }
   file.commit();
-  std::cout << "imunoise simulate: wrote " << samples << " samples (" << number_text(duration_s)
-            << " s at " << number_text(rate_hz) << " Hz, seed " << args.seed << ") to "
+  std::cout << "imunoise simulate: wrote " << samples << " samples (" << shortest_number_text(duration_s)
+            << " s at " << shortest_number_text(rate_hz) << " Hz, seed " << args.seed << ") to "
             << args.output << "\n";
 }
 
