@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 
+#include "analysis/chi_square.h"
 #include "analysis/confidence.h"
 #include "analysis/edf.h"
 #include "analysis/nnls.h"
@@ -54,13 +55,11 @@ struct Column {
 double basis(const Column& column, double tau_s, bool hadamard) {
   switch (column.kind) {
     case ColumnKind::power_law:
-      return hadamard ? term_hvar_basis(column.term, tau_s) : term_avar_basis(column.term, tau_s);
+      return term_basis(column.term, tau_s, hadamard);
     case ColumnKind::gauss_markov:
-      return hadamard ? gauss_markov_hvar(1.0, column.tau_c_s, tau_s)
-                      : gauss_markov_avar(1.0, column.tau_c_s, tau_s);
+      return gauss_markov_variance(1.0, column.tau_c_s, tau_s, hadamard);
     case ColumnKind::sinusoid:
-      return hadamard ? sinusoid_hvar(1.0, column.frequency_hz, tau_s)
-                      : sinusoid_avar(1.0, column.frequency_hz, tau_s);
+      return sinusoid_variance(1.0, column.frequency_hz, tau_s, hadamard);
   }
   return 0.0;
 }
@@ -390,8 +389,7 @@ FitResult make_result(std::span<const FitPoint> points, const Data& data,
             [](const GaussMarkov& a, const GaussMarkov& b) { return a.tau_c_s < b.tau_c_s; });
   r.residual_halfwidths.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const double model = hadamard ? model_hvar(r.coefficients, points[k].tau_s)
-                                  : model_avar(r.coefficients, points[k].tau_s);
+    const double model = model_variance(r.coefficients, points[k].tau_s, hadamard);
     r.residual_halfwidths[k] = residual_in_halfwidths(points[k], model);
   }
   return r;
@@ -563,27 +561,31 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
   return make_result(points, data, columns, s, hadamard, n_eff, std::move(note));
 }
 
-FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
-                            const FitOptions& options) {
-  validate_options(options);
-  validate_points(points, "refit_fixed_terms");
-  IMUNOISE_CHECK(structure.used.size() >= 2, AnalysisError,
-                 "refit_fixed_terms: the structure uses fewer than 2 points");
+namespace {
+
+/// The points FIT used (POINTS[USED]) as fit data; WHERE names the caller in errors.
+Data used_data(std::span<const FitPoint> points, std::span<const std::size_t> used,
+               const char* where) {
   Data data;
-  for (std::size_t k : structure.used) {
+  for (std::size_t k : used) {
     IMUNOISE_CHECK(k < points.size(), AnalysisError,
-                   "refit_fixed_terms: used index " + std::to_string(k) + " is out of range (" +
+                   std::string(where) + ": used index " + std::to_string(k) + " is out of range (" +
                        std::to_string(points.size()) + " points)");
     const FitPoint& p = points[k];
     IMUNOISE_CHECK(p.avar > 0.0 && p.edf > 0.0, AnalysisError,
-                   "refit_fixed_terms: point " + std::to_string(k) +
+                   std::string(where) + ": point " + std::to_string(k) +
                        " has a zero variance or no EDF and cannot be fitted");
     data.tau.push_back(p.tau_s);
     data.y.push_back(p.avar);
     data.nu.push_back(p.edf);
     data.index.push_back(k);
   }
-  const bool hadamard = structure.hadamard;
+  return data;
+}
+
+/// The columns of a fitted structure: its identified power-law terms, its sinusoid
+/// frequencies and its GM correlation times.
+std::vector<Column> structure_columns(const FitResult& structure) {
   std::vector<Column> columns;
   for (NoiseTerm term : kNoiseTerms)
     if (structure.terms[static_cast<std::size_t>(term)].identified)
@@ -592,6 +594,20 @@ FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& s
     columns.push_back({ColumnKind::sinusoid, NoiseTerm::white_noise, 0.0, sine.frequency_hz});
   for (const GaussMarkov& gm : structure.coefficients.gauss_markov)
     columns.push_back({ColumnKind::gauss_markov, NoiseTerm::white_noise, gm.tau_c_s, 0.0});
+  return columns;
+}
+
+}  // namespace
+
+FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
+                            const FitOptions& options) {
+  validate_options(options);
+  validate_points(points, "refit_fixed_terms");
+  IMUNOISE_CHECK(structure.used.size() >= 2, AnalysisError,
+                 "refit_fixed_terms: the structure uses fewer than 2 points");
+  const Data data = used_data(points, structure.used, "refit_fixed_terms");
+  const bool hadamard = structure.hadamard;
+  std::vector<Column> columns = structure_columns(structure);
   IMUNOISE_CHECK(!columns.empty(), AnalysisError,
                  "refit_fixed_terms: the structure has no identified term");
   refine_gauss_markov(data, columns, hadamard, options.weight_iterations,
@@ -608,16 +624,7 @@ std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> point
   const auto b_index = static_cast<std::size_t>(NoiseTerm::bias_instability);
   if (!fit.terms[b_index].identified) return {};
   validate_points(points, "multi_gm_representation");
-  Data data;
-  for (std::size_t k : fit.used) {
-    IMUNOISE_CHECK(k < points.size() && points[k].avar > 0.0 && points[k].edf > 0.0, AnalysisError,
-                   "multi_gm_representation: the fit's used point " + std::to_string(k) +
-                       " is missing or unusable in POINTS");
-    data.tau.push_back(points[k].tau_s);
-    data.y.push_back(points[k].avar);
-    data.nu.push_back(points[k].edf);
-    data.index.push_back(k);
-  }
+  const Data data = used_data(points, fit.used, "multi_gm_representation");
   IMUNOISE_CHECK(data.size() >= 2, AnalysisError,
                  "multi_gm_representation: the fit uses fewer than 2 points");
   const double tau_lo = *std::min_element(data.tau.begin(), data.tau.end());
@@ -639,8 +646,7 @@ std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> point
   others.bias_instability = 0.0;
   Eigen::VectorXd offset(static_cast<Eigen::Index>(data.size()));
   for (std::size_t k = 0; k < data.size(); ++k)
-    offset(static_cast<Eigen::Index>(k)) =
-        fit.hadamard ? model_hvar(others, data.tau[k]) : model_avar(others, data.tau[k]);
+    offset(static_cast<Eigen::Index>(k)) = model_variance(others, data.tau[k], fit.hadamard);
   const Solution s = solve(data, columns, fit.hadamard, FitOptions{}.weight_iterations, offset);
   std::vector<GaussMarkov> out;
   for (std::size_t j = 0; j < columns.size(); ++j) {
@@ -664,12 +670,82 @@ double fraction_inside_ci(std::span<const FitPoint> points, std::span<const std:
                    AnalysisError,
                    "fraction_inside_ci: point " + std::to_string(k) +
                        " needs tau > 0, a finite variance >= 0 and edf > 0");
-    const double dev =
-        std::sqrt(hadamard ? model_hvar(model, p.tau_s) : model_avar(model, p.tau_s));
+    const double dev = std::sqrt(model_variance(model, p.tau_s, hadamard));
     const DeviationInterval ci = deviation_interval(std::sqrt(p.avar), p.edf, confidence);
     if (dev >= ci.low && dev <= ci.high) ++inside;
   }
   return static_cast<double>(inside) / static_cast<double>(used.size());
+}
+
+std::array<CoefficientInterval, 5> least_squares_intervals(std::span<const FitPoint> points,
+                                                           const FitResult& fit,
+                                                           double confidence) {
+  std::array<CoefficientInterval, 5> out{};
+  std::vector<NoiseTerm> active;
+  for (NoiseTerm term : kNoiseTerms) {
+    const TermFit& t = fit.terms[static_cast<std::size_t>(term)];
+    if (t.identified && t.value > 0.0) active.push_back(term);
+  }
+  if (active.empty() || fit.used.empty()) return out;
+  const Data data = used_data(points, fit.used, "least_squares_intervals");
+  const auto p = static_cast<Eigen::Index>(active.size());
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(p, p);
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    const double model = model_variance(fit.coefficients, data.tau[k], fit.hadamard);
+    if (!(model > 0.0)) continue;
+    Eigen::VectorXd phi(p);
+    for (Eigen::Index i = 0; i < p; ++i) {
+      phi(i) = term_basis(active[static_cast<std::size_t>(i)], data.tau[k], fit.hadamard);
+    }
+    normal += data.nu[k] / (2.0 * model * model) * phi * phi.transpose();
+  }
+  const Eigen::MatrixXd cov = normal.completeOrthogonalDecomposition().pseudoInverse();
+  // Two-sided normal quantile: P(Z² ≤ z²) = confidence with Z² ~ χ²₁.
+  const double z = std::sqrt(chi_square_quantile(confidence, 1.0));
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const auto t = static_cast<std::size_t>(active[static_cast<std::size_t>(i)]);
+    const double c = fit.terms[t].value;
+    const double sd_c = std::sqrt(std::max(cov(i, i), 0.0)) / (2.0 * c);  // d(c²) = 2c·dc
+    out[t] = {std::max(0.0, c - z * sd_c), c + z * sd_c};
+  }
+  return out;
+}
+
+double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
+                           double confidence, int weight_iterations) {
+  if (fit.used.empty()) return std::numeric_limits<double>::infinity();
+  const Data data = used_data(points, fit.used, "profile_upper_bound");
+  std::vector<Column> columns = structure_columns(fit);
+  std::erase_if(columns, [term](const Column& c) {
+    return c.kind == ColumnKind::power_law && c.term == term;
+  });
+  const auto n = static_cast<Eigen::Index>(data.size());
+  Eigen::VectorXd phi(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    phi(k) = term_basis(term, data.tau[static_cast<std::size_t>(k)], fit.hadamard);
+  }
+  // D(c): the deviance of the best fit of the other terms with c²·φ held in the model.
+  const auto deviance_at = [&](double c) {
+    return solve(data, columns, fit.hadamard, weight_iterations, c * c * phi).deviance;
+  };
+  const double d0 = deviance_at(0.0);
+  const double target = chi_square_quantile(confidence, 1.0) * static_cast<double>(data.size()) /
+                        effective_point_count(data);
+  double c_hi = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (phi(k) > 0.0) {
+      c_hi = std::max(c_hi, std::sqrt(100.0 * data.y[static_cast<std::size_t>(k)] / phi(k)));
+    }
+  }
+  if (!(c_hi > 0.0) || !(deviance_at(c_hi) - d0 > target)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double c_lo = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (c_lo + c_hi);
+    (deviance_at(mid) - d0 > target ? c_hi : c_lo) = mid;
+  }
+  return c_hi;
 }
 
 }  // namespace imunoise::analysis

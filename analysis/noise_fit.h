@@ -164,4 +164,27 @@ double fraction_inside_ci(std::span<const FitPoint> points, std::span<const std:
                           const NoiseCoefficients& model, double confidence = 0.95,
                           bool hadamard = false);
 
+/// An interval of one coefficient [its SI unit].
+struct CoefficientInterval {
+  double low = 0.0;
+  double high = 0.0;
+};
+
+/// (ΦᵀWΦ)⁻¹ intervals of the identified power-law terms of FIT (normal approximation on c from
+/// the covariance of c², weights ν/(2m²) from the fitted model, FIT's basis); zero intervals
+/// for terms not identified. Ignores the correlation between τ points (theory.md §3.5), so it
+/// is optimistic: the fallback when no bootstrap is run.
+std::array<CoefficientInterval, 5> least_squares_intervals(std::span<const FitPoint> points,
+                                                           const FitResult& fit, double confidence);
+
+/// Profile upper bound of a term FIT did not identify: the coefficient c at which forcing the
+/// term to c (c²·basis added as a fixed offset, FIT's other terms re-fitted by the same
+/// re-weighted NNLS, GM T_c held) raises the gamma deviance by χ²₁(CONFIDENCE)·n_used/n_eff —
+/// the correlation-corrected scale of the model selection. Infinity if no c within reach of
+/// the data (the term alone 100× the data at its most favourable point) does.
+/// @throws AnalysisError when FIT.used does not index usable POINTS.
+double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
+                           double confidence,
+                           int weight_iterations = FitOptions{}.weight_iterations);
+
 }  // namespace imunoise::analysis

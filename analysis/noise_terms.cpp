@@ -162,17 +162,34 @@ double sinusoid_hvar(double amplitude, double f_hz, double tau_s) {
   return (4.0 / 3.0) * amplitude * amplitude * s2 * s2 * s2 / (x * x);
 }
 
-double model_avar(const NoiseCoefficients& model, double tau_s) {
+double term_basis(NoiseTerm term, double tau_s, bool hadamard) {
+  return hadamard ? term_hvar_basis(term, tau_s) : term_avar_basis(term, tau_s);
+}
+
+double gauss_markov_variance(double sigma, double tau_c_s, double tau_s, bool hadamard) {
+  return hadamard ? gauss_markov_hvar(sigma, tau_c_s, tau_s)
+                  : gauss_markov_avar(sigma, tau_c_s, tau_s);
+}
+
+double sinusoid_variance(double amplitude, double f_hz, double tau_s, bool hadamard) {
+  return hadamard ? sinusoid_hvar(amplitude, f_hz, tau_s) : sinusoid_avar(amplitude, f_hz, tau_s);
+}
+
+double model_variance(const NoiseCoefficients& model, double tau_s, bool hadamard) {
   double sum = 0.0;
   for (NoiseTerm term : kNoiseTerms) {
     const double c = coefficient_of(model, term);
-    sum += c * c * term_avar_basis(term, tau_s);
+    sum += c * c * term_basis(term, tau_s, hadamard);
   }
   for (const GaussMarkov& gm : model.gauss_markov)
-    sum += gauss_markov_avar(gm.sigma, gm.tau_c_s, tau_s);
+    sum += gauss_markov_variance(gm.sigma, gm.tau_c_s, tau_s, hadamard);
   for (const Sinusoid& s : model.sinusoids)
-    sum += sinusoid_avar(s.amplitude, s.frequency_hz, tau_s);
+    sum += sinusoid_variance(s.amplitude, s.frequency_hz, tau_s, hadamard);
   return sum;
+}
+
+double model_avar(const NoiseCoefficients& model, double tau_s) {
+  return model_variance(model, tau_s, false);
 }
 
 double model_adev(const NoiseCoefficients& model, double tau_s) {
@@ -180,16 +197,7 @@ double model_adev(const NoiseCoefficients& model, double tau_s) {
 }
 
 double model_hvar(const NoiseCoefficients& model, double tau_s) {
-  double sum = 0.0;
-  for (NoiseTerm term : kNoiseTerms) {
-    const double c = coefficient_of(model, term);
-    sum += c * c * term_hvar_basis(term, tau_s);
-  }
-  for (const GaussMarkov& gm : model.gauss_markov)
-    sum += gauss_markov_hvar(gm.sigma, gm.tau_c_s, tau_s);
-  for (const Sinusoid& s : model.sinusoids)
-    sum += sinusoid_hvar(s.amplitude, s.frequency_hz, tau_s);
-  return sum;
+  return model_variance(model, tau_s, true);
 }
 
 double model_hdev(const NoiseCoefficients& model, double tau_s) {

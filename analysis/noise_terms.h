@@ -66,6 +66,15 @@ double sinusoid_avar(double amplitude, double f_hz, double tau_s);
 double sinusoid_hvar(double amplitude, double f_hz, double tau_s);
 
 /// @}
+/// @name Either variance: HADAMARD selects the HVAR column of theory.md §4.1, else AVAR
+/// @{
+double term_basis(NoiseTerm term, double tau_s, bool hadamard);
+double gauss_markov_variance(double sigma, double tau_c_s, double tau_s, bool hadamard);
+double sinusoid_variance(double amplitude, double f_hz, double tau_s, bool hadamard);
+/// HVAR (HADAMARD) or AVAR of the sum of all terms of MODEL at τ [rate unit²].
+double model_variance(const NoiseCoefficients& model, double tau_s, bool hadamard);
+
+/// @}
 /// @name Whole model
 /// @{
 

@@ -1,12 +1,10 @@
 #include "pipeline/axis_analysis.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "analysis/chi_square.h"
 #include "analysis/confidence.h"
 #include "analysis/edf.h"
 #include "analysis/noise_terms.h"
@@ -28,8 +26,8 @@ std::string number_text(double value) {
 /// Refuses records the estimator cannot answer, with the reason in the message.
 void check_rate_samples(const std::string& name, std::span<const double> rate) {
   if (rate.size() < 16) {
-    throw AnalysisError(name + ": too few samples for any τ range (" +
-                        std::to_string(rate.size()) + "; a fit needs at least 16)");
+    throw AnalysisError(name + ": too few samples for any τ range (" + std::to_string(rate.size()) +
+                        "; a fit needs at least 16)");
   }
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
@@ -45,47 +43,6 @@ void check_rate_samples(const std::string& name, std::span<const double> rate) {
     throw AnalysisError(name + ": the signal is constant (" + number_text(low) +
                         " in every sample); there is no noise to model");
   }
-}
-
-/// (ΦᵀWΦ)⁻¹ intervals on the identified coefficients c (from the variances c²), normal
-/// approximation: used only when the bootstrap is off. Ignores inter-τ correlation, so it is
-/// optimistic (theory.md §4.3); the interval method says so.
-std::array<Interval, 5> least_squares_intervals(const analysis::FitResult& fit,
-                                                std::span<const analysis::FitPoint> points,
-                                                bool hadamard, double confidence) {
-  std::array<Interval, 5> out{};
-  std::vector<std::size_t> active;
-  for (std::size_t t = 0; t < 5; ++t) {
-    if (fit.terms[t].identified && fit.terms[t].value > 0.0) active.push_back(t);
-  }
-  if (active.empty() || fit.used.empty()) return out;
-  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(active.size()),
-                                                 static_cast<Eigen::Index>(active.size()));
-  for (std::size_t k : fit.used) {
-    const analysis::FitPoint& p = points[k];
-    const double model = analysis::model_avar(fit.coefficients, p.tau_s);
-    if (!(model > 0.0) || !(p.edf > 0.0)) continue;
-    const double w = p.edf / (2.0 * model * model);
-    Eigen::VectorXd phi(static_cast<Eigen::Index>(active.size()));
-    for (std::size_t i = 0; i < active.size(); ++i) {
-      const auto term = static_cast<analysis::NoiseTerm>(active[i]);
-      phi(static_cast<Eigen::Index>(i)) = hadamard ? analysis::term_hvar_basis(term, p.tau_s)
-                                                   : analysis::term_avar_basis(term, p.tau_s);
-    }
-    normal += w * phi * phi.transpose();
-  }
-  const Eigen::MatrixXd cov = normal.completeOrthogonalDecomposition().pseudoInverse();
-  // Two-sided normal quantile: P(Z² ≤ z²) = confidence with Z² ~ χ²₁.
-  const double z = std::sqrt(analysis::chi_square_quantile(confidence, 1.0));
-  for (std::size_t i = 0; i < active.size(); ++i) {
-    const double c = fit.terms[active[i]].value;
-    const double sd_c = std::sqrt(std::max(cov(static_cast<Eigen::Index>(i),
-                                               static_cast<Eigen::Index>(i)),
-                                           0.0)) /
-                        (2.0 * c);  // d(c²) = 2c·dc
-    out[active[i]] = {std::max(0.0, c - z * sd_c), c + z * sd_c};
-  }
-  return out;
 }
 
 /// τ of the minimum of the fitted model ADEV over the fit range (log-spaced search), used as
@@ -121,7 +78,7 @@ int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard) {
     }
   };
   const auto basis = [&](analysis::NoiseTerm t) {
-    return hadamard ? analysis::term_hvar_basis(t, tau_s) : analysis::term_avar_basis(t, tau_s);
+    return analysis::term_basis(t, tau_s, hadamard);
   };
   consider(c.quantization * c.quantization * basis(analysis::NoiseTerm::quantization), 2);
   consider(c.white_noise * c.white_noise * basis(analysis::NoiseTerm::white_noise), 0);
@@ -130,16 +87,15 @@ int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard) {
   consider(c.random_walk * c.random_walk * basis(analysis::NoiseTerm::random_walk), -2);
   if (!hadamard) consider(c.ramp * c.ramp * basis(analysis::NoiseTerm::ramp), -2);
   for (const GaussMarkov& gm : c.gauss_markov) {
-    const double v = hadamard ? analysis::gauss_markov_hvar(gm.sigma, gm.tau_c_s, tau_s)
-                              : analysis::gauss_markov_avar(gm.sigma, gm.tau_c_s, tau_s);
+    const double v = analysis::gauss_markov_variance(gm.sigma, gm.tau_c_s, tau_s, hadamard);
     consider(v, tau_s < gm.tau_c_s ? -2 : 0);
   }
   return alpha;
 }
 
 void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoefficients& c) {
-  const bool hadamard = curve.type == analysis::DeviationType::ohdev ||
-                        curve.type == analysis::DeviationType::hdev;
+  const bool hadamard =
+      curve.type == analysis::DeviationType::ohdev || curve.type == analysis::DeviationType::hdev;
   for (analysis::DeviationPoint& p : curve.points) {
     p.alpha = model_noise_alpha(c, p.tau_s, hadamard);
     p.edf = analysis::edf_for(curve.type, p.alpha, p.m, curve.n_phase);
@@ -221,8 +177,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   const analysis::Spectrum raw = analysis::welch_psd(rate, 1.0 / tau0_s, options.welch);
   out.psd = analysis::log_bin(raw, options.psd_bins_per_decade);
   out.psd_readoff = analysis::psd_readoff(out.psd);
-  out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s,
-                                            0.4 / tau0_s);
+  out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s, 0.4 / tau0_s);
 
   // 4. Intervals.
   models::AxisModel& model = out.model;
@@ -249,7 +204,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
     interval_method = "parametric bootstrap, " + std::to_string(result.replicates) +
                       " replicates, bias-corrected normal interval of the log";
   } else {
-    intervals = least_squares_intervals(out.fit, points, fit_options.hadamard, options.confidence);
+    intervals = analysis::least_squares_intervals(points, out.fit, options.confidence);
     interval_method = "weighted least squares covariance (ignores inter-tau correlation)";
   }
   for (models::Term term : models::kTerms) {
@@ -264,8 +219,9 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
       e.interval_method = interval_method;
     } else {
       e.ci_low = 0.0;
-      const double bound = unidentified_upper_bound(static_cast<analysis::NoiseTerm>(t), out.fit,
-                                                    points, options.confidence);
+      const double bound =
+          analysis::profile_upper_bound(points, out.fit, static_cast<analysis::NoiseTerm>(t),
+                                        options.confidence, fit_options.weight_iterations);
       e.ci_high = std::isfinite(bound) ? bound : 0.0;
       e.interval_method = std::isfinite(bound)
                               ? "not identified; upper bound where the term alone would leave "

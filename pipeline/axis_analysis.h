@@ -23,22 +23,22 @@ namespace imunoise::pipeline {
 
 /// Settings shared by every axis of one analysis.
 struct AxisAnalysisOptions {
-  double confidence = 0.95;            ///< level of every reported interval
+  double confidence = 0.95;  ///< level of every reported interval
   analysis::TauGridSpec grid = analysis::parse_tau_grid("log:10");  ///< τ grid of the curves
-  analysis::FitOptions fit;            ///< fit settings (tau_min_s 0 = automatic low-pass check)
-  bool auto_low_pass = true;           ///< drop leading τ bent below the white line (§4.3)
-  analysis::WelchOptions welch;        ///< PSD settings
+  analysis::FitOptions fit;      ///< fit settings (tau_min_s 0 = automatic low-pass check)
+  bool auto_low_pass = true;     ///< drop leading τ bent below the white line (§4.3)
+  analysis::WelchOptions welch;  ///< PSD settings
   int psd_bins_per_decade = 10;
-  int bootstrap_replicates = 50;       ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
-  std::uint64_t seed = 1;              ///< bootstrap master seed (axis index is mixed in)
-  unsigned threads = 1;                ///< threads for this axis (deviation τ and bootstrap)
+  int bootstrap_replicates = 50;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
+  std::uint64_t seed = 1;         ///< bootstrap master seed (axis index is mixed in)
+  unsigned threads = 1;           ///< threads for this axis (deviation τ and bootstrap)
 };
 
 /// The complete result of one axis.
 struct AxisAnalysis {
   analysis::DeviationCurve oadev;
   analysis::DeviationCurve ohdev;
-  analysis::Spectrum psd;           ///< log-binned one-sided PSD
+  analysis::Spectrum psd;  ///< log-binned one-sided PSD
   analysis::FitResult fit;
   analysis::SlopeReadoff slope;
   analysis::PsdReadoff psd_readoff;

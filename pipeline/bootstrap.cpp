@@ -2,15 +2,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <Eigen/Dense>
 #include <cmath>
-#include <functional>
-#include <limits>
 #include <thread>
 
 #include "analysis/chi_square.h"
 #include "analysis/deviation.h"
-#include "analysis/nnls.h"
 #include "analysis/noise_terms.h"
 #include "common/errors.h"
 #include "models/noise_simulator.h"
@@ -93,10 +89,9 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
       simulator.next_block(rate);
       const std::vector<double> phase = analysis::phase_from_rate(rate, tau0_s);
       for (std::size_t k = 0; k < m_list.size(); ++k) {
-        replicate_points[k].avar =
-            analysis::allan_family_variance(analysis::DeviationType::oadev, phase, m_list[k],
-                                            tau0_s)
-                .variance;
+        replicate_points[k].avar = analysis::allan_family_variance(analysis::DeviationType::oadev,
+                                                                   phase, m_list[k], tau0_s)
+                                       .variance;
       }
       Replicate& out = results[static_cast<std::size_t>(r)];
       try {
@@ -113,8 +108,8 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
       }
     }
   };
-  const unsigned threads = std::max(1u, std::min<unsigned>(options.threads,
-                                                           static_cast<unsigned>(options.replicates)));
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(options.threads, static_cast<unsigned>(options.replicates)));
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
@@ -145,116 +140,11 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
   }
   for (std::size_t j = 0; j < gm_count; ++j) {
     result.gauss_markov_sigma.push_back(bootstrap_interval(fit.coefficients.gauss_markov[j].sigma,
-                                                       gm_sigma[j], options.confidence));
+                                                           gm_sigma[j], options.confidence));
     result.gauss_markov_tau_c.push_back(bootstrap_interval(fit.coefficients.gauss_markov[j].tau_c_s,
-                                                       gm_tau[j], options.confidence));
+                                                           gm_tau[j], options.confidence));
   }
   return result;
-}
-
-namespace {
-
-/// Gamma deviance Σ ν(r − 1 − ln r), r = σ̂²/model, over the used points (as the fit's).
-double deviance_of(std::span<const analysis::FitPoint> points, std::span<const std::size_t> used,
-                   const std::vector<double>& model) {
-  double d = 0.0;
-  for (std::size_t i = 0; i < used.size(); ++i) {
-    const analysis::FitPoint& p = points[used[i]];
-    if (!(model[i] > 0.0) || !(p.avar > 0.0)) return std::numeric_limits<double>::infinity();
-    const double r = p.avar / model[i];
-    d += p.edf * (r - 1.0 - std::log(r));
-  }
-  return d;
-}
-
-}  // namespace
-
-double unidentified_upper_bound(analysis::NoiseTerm term, const analysis::FitResult& fit,
-                                std::span<const analysis::FitPoint> points, double confidence) {
-  // Profile bound: force the term at c, re-fit the other identified terms (NNLS with the
-  // fit's model-based weights, GM T_c and sinusoid frequencies held), and find the c at which
-  // the deviance has risen by χ²₁(confidence)·n_used/n_eff — the same correlation-corrected
-  // scale as the fit's model selection (about one independent point per octave of τ).
-  const std::vector<std::size_t>& used = fit.used;
-  if (used.empty()) return std::numeric_limits<double>::infinity();
-  const auto basis_of = [&](analysis::NoiseTerm t, double tau) {
-    return fit.hadamard ? analysis::term_hvar_basis(t, tau) : analysis::term_avar_basis(t, tau);
-  };
-  std::vector<std::function<double(double)>> columns;
-  for (analysis::NoiseTerm t : analysis::kNoiseTerms) {
-    if (t == term || !fit.terms[static_cast<std::size_t>(t)].identified) continue;
-    columns.emplace_back([&, t](double tau) { return basis_of(t, tau); });
-  }
-  for (const GaussMarkov& gm : fit.coefficients.gauss_markov) {
-    const double tc = gm.tau_c_s;
-    const bool h = fit.hadamard;
-    columns.emplace_back([tc, h](double tau) {
-      return h ? analysis::gauss_markov_hvar(1.0, tc, tau) : analysis::gauss_markov_avar(1.0, tc, tau);
-    });
-  }
-  for (const Sinusoid& line : fit.coefficients.sinusoids) {
-    const double f = line.frequency_hz;
-    const bool h = fit.hadamard;
-    columns.emplace_back([f, h](double tau) {
-      return h ? analysis::sinusoid_hvar(1.0, f, tau) : analysis::sinusoid_avar(1.0, f, tau);
-    });
-  }
-  const auto n = static_cast<Eigen::Index>(used.size());
-  const auto k = static_cast<Eigen::Index>(columns.size());
-  Eigen::MatrixXd psi(n, k);
-  Eigen::VectorXd phi(n), avar(n), weight_base(n);
-  std::vector<double> model0(used.size());
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const analysis::FitPoint& p = points[used[static_cast<std::size_t>(i)]];
-    for (Eigen::Index j = 0; j < k; ++j) psi(i, j) = columns[static_cast<std::size_t>(j)](p.tau_s);
-    phi(i) = basis_of(term, p.tau_s);
-    avar(i) = p.avar;
-    weight_base(i) = std::max(p.edf, 0.0) / 2.0;
-    model0[static_cast<std::size_t>(i)] =
-        fit.hadamard ? analysis::model_hvar(fit.coefficients, p.tau_s)
-                     : analysis::model_avar(fit.coefficients, p.tau_s);
-  }
-  const double d0 = deviance_of(points, used, model0);
-  const double scale = static_cast<double>(used.size()) / std::max(1.0, fit.effective_points);
-  const double target = analysis::chi_square_quantile(confidence, 1.0) * scale;
-
-  // Deviance with the term forced at c²·φ and the others re-fitted (two re-weightings).
-  const auto deviance_at = [&](double c) {
-    std::vector<double> model = model0;
-    for (int iteration = 0; iteration < 3; ++iteration) {
-      Eigen::VectorXd sw(n);
-      for (Eigen::Index i = 0; i < n; ++i) {
-        sw(i) = std::sqrt(weight_base(i)) / model[static_cast<std::size_t>(i)];
-      }
-      Eigen::VectorXd a = Eigen::VectorXd::Zero(k);
-      if (k > 0) {
-        a = analysis::nnls(sw.asDiagonal() * psi, sw.cwiseProduct(avar - c * c * phi));
-      }
-      for (Eigen::Index i = 0; i < n; ++i) {
-        const double m = c * c * phi(i) + (k > 0 ? psi.row(i).dot(a) : 0.0);
-        model[static_cast<std::size_t>(i)] = std::max(m, 1e-300);
-      }
-    }
-    return deviance_of(points, used, model);
-  };
-  // Bracket: at c_hi the term alone is 100× the data at its most favourable point.
-  double c_hi = 0.0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (phi(i) > 0.0) c_hi = std::max(c_hi, std::sqrt(100.0 * avar(i) / phi(i)));
-  }
-  if (!(c_hi > 0.0) || !(deviance_at(c_hi) - d0 > target)) {
-    return std::numeric_limits<double>::infinity();
-  }
-  double c_lo = 0.0;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (c_lo + c_hi);
-    if (deviance_at(mid) - d0 > target) {
-      c_hi = mid;
-    } else {
-      c_lo = mid;
-    }
-  }
-  return c_hi;
 }
 
 }  // namespace imunoise::pipeline

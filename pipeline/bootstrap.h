@@ -18,17 +18,14 @@ namespace imunoise::pipeline {
 
 /// Settings of one bootstrap.
 struct BootstrapOptions {
-  int replicates = 50;        ///< number of simulated records
-  std::uint64_t seed = 1;     ///< master seed; replicate r uses (seed, r)
-  double confidence = 0.95;   ///< two-sided level of the intervals
-  unsigned threads = 1;       ///< worker threads across replicates
+  int replicates = 50;       ///< number of simulated records
+  std::uint64_t seed = 1;    ///< master seed; replicate r uses (seed, r)
+  double confidence = 0.95;  ///< two-sided level of the intervals
+  unsigned threads = 1;      ///< worker threads across replicates
 };
 
 /// Interval of one scalar parameter.
-struct Interval {
-  double low = 0.0;
-  double high = 0.0;
-};
+using Interval = analysis::CoefficientInterval;
 
 /// Bootstrap intervals of every fitted parameter.
 struct BootstrapResult {
@@ -54,12 +51,5 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               std::span<const std::int64_t> m_list, std::int64_t n_samples,
                               double tau0_s, const analysis::FitOptions& fit_options,
                               const BootstrapOptions& options);
-
-/// Upper bound of a term the fit did not identify (profile bound): the coefficient c at which
-/// forcing the term to c (the other identified terms re-fitted by NNLS with the fit's weights)
-/// raises the gamma deviance by χ²₁(CONFIDENCE)·n_used/n_eff — the correlation-corrected
-/// scale of the fit's model selection. Infinity if no c within reach of the data does.
-double unidentified_upper_bound(analysis::NoiseTerm term, const analysis::FitResult& fit,
-                                std::span<const analysis::FitPoint> points, double confidence);
 
 }  // namespace imunoise::pipeline

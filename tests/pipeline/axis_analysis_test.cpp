@@ -151,10 +151,9 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
   const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
-  std::vector<analysis::FitPoint> points;
-  for (const auto& p : a.oadev.points) points.push_back({p.tau_s, p.value * p.value, p.edf});
+  const std::vector<analysis::FitPoint> points = analysis::fit_points(a.oadev);
   const double bound =
-      unidentified_upper_bound(analysis::NoiseTerm::ramp, a.fit, points, 0.95);
+      analysis::profile_upper_bound(points, a.fit, analysis::NoiseTerm::ramp, 0.95);
   ASSERT_TRUE(std::isfinite(bound));
   EXPECT_GT(bound, 0.0);
   // A ramp of the bound's size adds R²τ²/2 at the longest τ: at most the width of that point's
