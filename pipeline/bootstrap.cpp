@@ -88,7 +88,9 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
       models::ChannelSimulator simulator(channel, sim, 0);
       simulator.next_block(rate);
       const std::vector<double> phase = analysis::phase_from_rate(rate, tau0_s);
-      for (std::size_t k = 0; k < m_list.size(); ++k) {
+      // Only the τ the fit used: refit_fixed_terms reads no other point, and each OAVAR is a
+      // full pass over the record.
+      for (std::size_t k : fit.used) {
         replicate_points[k].avar = analysis::allan_family_variance(analysis::DeviationType::oadev,
                                                                    phase, m_list[k], tau0_s)
                                        .variance;
