@@ -224,12 +224,10 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
                                         options.confidence, fit_options.weight_iterations);
       e.ci_high = std::isfinite(bound) ? bound : 0.0;
       e.interval_method = std::isfinite(bound)
-                              ? "not identified; upper bound where the term alone would leave "
-                                "a point's interval"
+                              ? "not identified; profile upper bound (deviance rise "
+                                "chi2_1 x n_used/n_eff, analysis::profile_upper_bound)"
                               : "not identified; no bound from the fitted range";
     }
-    model.readoff.slope[t] = 0.0;
-    model.readoff.psd[t] = 0.0;
   }
   const auto slope_value = [](const analysis::SlopeReadoffTerm& r) {
     return r.found ? r.value : 0.0;
