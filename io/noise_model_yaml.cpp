@@ -105,7 +105,6 @@ const SensorKeys& keys_for(bool gyro) { return gyro ? kGyroKeys : kAccelKeys; }
 // Writing
 // ---------------------------------------------------------------------------------------------
 
-
 std::string integer_text(std::int64_t value) {
   std::array<char, 24> buffer{};
   const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
@@ -160,7 +159,9 @@ class FlowMap {
     text_.append(text_.size() == 1 ? "" : ", ").append(key).append(": ").append(value_text);
     return *this;
   }
-  FlowMap& number(std::string_view key, double value) { return raw(key, shortest_number_text(value)); }
+  FlowMap& number(std::string_view key, double value) {
+    return raw(key, shortest_number_text(value));
+  }
   FlowMap& boolean(std::string_view key, bool value) { return raw(key, value ? "true" : "false"); }
   FlowMap& string(std::string_view key, std::string_view value) {
     return raw(key, double_quoted(value));
@@ -190,8 +191,8 @@ class Writer {
     line(0, "sample_rate_hz: " + shortest_number_text(model.sample_rate_hz));
     line(0, "duration_s: " + shortest_number_text(model.duration_s));
     line(0, "samples: " + integer_text(model.samples));
-    line(0,
-         "confidence: " + shortest_number_text(model.confidence) + "  # level of every [ci_low, ci_high]");
+    line(0, "confidence: " + shortest_number_text(model.confidence) +
+                "  # level of every [ci_low, ci_high]");
     if (model.data_quality.empty()) {
       line(0, "data_quality: []");
     } else {
@@ -276,7 +277,8 @@ class Writer {
       items.push_back(FlowMap().number(keys.sigma, gm.sigma).number(kTauC, gm.tau_c_s).text());
     }
     list(6, kMultiGmTerms, items, "");
-    line(6, std::string(kMultiGmFraction) + ": " + shortest_number_text(axis.multi_gm_fraction_inside_ci));
+    line(6, std::string(kMultiGmFraction) + ": " +
+                shortest_number_text(axis.multi_gm_fraction_inside_ci));
 
     line(4, std::string(kFit) + ": " +
                 FlowMap()

@@ -179,7 +179,6 @@ constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 
 const SensorSchema& schema_of(Sensor sensor) { return sensor == Sensor::kGyro ? kGyro : kAccel; }
 
-
 /// "a|b|c": the keys of Q.
 std::string alternatives(const Quantity& q) {
   std::string text;

@@ -29,7 +29,6 @@ constexpr std::uint32_t kFlickerStreamBase = 2000;
 /// Distinguishes this simulator's streams from any other user of the same seed ("imunoise").
 constexpr std::uint64_t kSalt = 0x696d756e6f697365ULL;
 
-
 void check_non_negative(double value, std::string_view where, std::string_view field) {
   if (!std::isfinite(value) || value < 0.0) {
     throw InputError(std::string(where) + "." + std::string(field) +
@@ -232,8 +231,9 @@ std::vector<GaussMarkovTerm> flicker_gauss_markov_terms(double bias_instability,
   check_non_negative(bias_instability, "flicker", "bias_instability");
   if (!std::isfinite(tau_min_s) || !std::isfinite(tau_max_s) || !(tau_min_s > 0.0) ||
       !(tau_max_s > tau_min_s)) {
-    throw InputError("flicker band: need 0 < tau_min_s < tau_max_s (got " + shortest_number_text(tau_min_s) +
-                     ", " + shortest_number_text(tau_max_s) + ")");
+    throw InputError("flicker band: need 0 < tau_min_s < tau_max_s (got " +
+                     shortest_number_text(tau_min_s) + ", " + shortest_number_text(tau_max_s) +
+                     ")");
   }
   std::vector<GaussMarkovTerm> terms;
   if (bias_instability == 0.0) return terms;

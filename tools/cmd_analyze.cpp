@@ -64,7 +64,6 @@ struct AnalyzeArgs {
   bool quiet = false;
 };
 
-
 std::string fixed(double value, int digits = 4) {
   std::ostringstream out;
   out.precision(digits);
@@ -90,8 +89,7 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   if (t.has_timestamps && t.median_interval_s > 0.0 &&
       t.jitter_rms_s > 0.01 * t.median_interval_s) {
     out.push_back("time-stamp jitter " + fixed(t.jitter_rms_s) + " s RMS (" +
-                  fixed(100.0 * t.jitter_rms_s / t.median_interval_s, 3) +
-                  " % of the interval)");
+                  fixed(100.0 * t.jitter_rms_s / t.median_interval_s, 3) + " % of the interval)");
   }
   if (report.rows_dropped > 0) {
     out.push_back(std::to_string(report.rows_dropped) + " row(s) with NaN/Inf dropped");
@@ -105,7 +103,9 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
       out.push_back(c.name + ": " + std::to_string(c.beyond_full_scale) +
                     " samples at or beyond the full scale");
     }
-    if (c.lsb) out.push_back(c.name + ": output quantized, LSB " + shortest_number_text(*c.lsb) + " " + c.unit);
+    if (c.lsb)
+      out.push_back(c.name + ": output quantized, LSB " + shortest_number_text(*c.lsb) + " " +
+                    c.unit);
   }
   return out;
 }
@@ -177,22 +177,24 @@ void write_allan_csv(const std::string& path, const std::vector<pipeline::AxisAn
     const double tau = static_cast<double>(m) * tau0_s;
     out << m << "," << shortest_number_text(tau);
     for (const auto& a : axes) {
-      const auto find = [m = m](const analysis::DeviationCurve& c) -> const analysis::DeviationPoint* {
+      const auto find =
+          [m = m](const analysis::DeviationCurve& c) -> const analysis::DeviationPoint* {
         for (const auto& p : c.points) {
           if (p.m == m) return &p;
         }
         return nullptr;
       };
       if (const auto* p = find(a.oadev)) {
-        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low) << ","
-            << shortest_number_text(p->ci_high) << "," << shortest_number_text(p->edf) << "," << p->alpha;
+        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low)
+            << "," << shortest_number_text(p->ci_high) << "," << shortest_number_text(p->edf) << ","
+            << p->alpha;
       } else {
         out << ",,,,,";
       }
       out << "," << shortest_number_text(std::sqrt(analysis::model_avar(a.fit.coefficients, tau)));
       if (const auto* p = find(a.ohdev)) {
-        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low) << ","
-            << shortest_number_text(p->ci_high);
+        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low)
+            << "," << shortest_number_text(p->ci_high);
       } else {
         out << ",,,";
       }
@@ -202,22 +204,40 @@ void write_allan_csv(const std::string& path, const std::vector<pipeline::AxisAn
   file.commit();
 }
 
-/// psd.csv: log-binned one-sided PSD per axis with its dof and the fitted model's PSD.
+/// psd.csv: one row per log bin (every axis has the same bins: same length, rate and Welch
+/// settings), per axis the one-sided PSD, its dof and the fitted model's PSD, with the unit
+/// in every column name as in allan.csv.
 void write_psd_csv(const std::string& path, const std::vector<pipeline::AxisAnalysis>& axes,
                    double tau0_s) {
+  std::map<double, std::size_t> rows;  // frequency → row; a bin an axis lacks stays empty
+  for (const auto& a : axes) {
+    for (double f : a.psd.frequency_hz) rows.emplace(f, 0);
+  }
   io::AtomicOutputFile file(path);
   std::ostream& out = file.stream();
-  out << "axis,frequency_hz,psd_one_sided,psd_unit,dof,model_psd_one_sided\n";
-  // Long format: the unit differs between gyro and accelerometer rows, so it is named in the
-  // psd_unit column of every row (and in the header comment of docs/model-yaml.md).
+  out << "frequency_hz";
   for (const auto& a : axes) {
-    const std::string unit = psd_unit_suffix(a.model.gyro);
-    for (std::size_t i = 0; i < a.psd.frequency_hz.size(); ++i) {
-      const double f = a.psd.frequency_hz[i];
-      out << a.model.name << "," << shortest_number_text(f) << "," << shortest_number_text(a.psd.density[i]) << ","
-          << unit << "," << shortest_number_text(a.psd.dof[i]) << ","
-          << shortest_number_text(analysis::model_psd_one_sided(a.fit.coefficients, f, tau0_s)) << "\n";
+    const std::string n = a.model.name;
+    const std::string u = psd_unit_suffix(a.model.gyro);
+    out << "," << n << "_psd_" << u << "," << n << "_psd_dof," << n << "_model_psd_" << u;
+  }
+  out << "\n";
+  for (const auto& [f, unused] : rows) {
+    (void)unused;
+    out << shortest_number_text(f);
+    for (const auto& a : axes) {
+      const auto& freq = a.psd.frequency_hz;
+      const auto it = std::find(freq.begin(), freq.end(), f);
+      if (it == freq.end()) {
+        out << ",,,";
+        continue;
+      }
+      const auto i = static_cast<std::size_t>(it - freq.begin());
+      out << "," << shortest_number_text(a.psd.density[i]) << ","
+          << shortest_number_text(a.psd.dof[i]) << ","
+          << shortest_number_text(analysis::model_psd_one_sided(a.fit.coefficients, f, tau0_s));
     }
+    out << "\n";
   }
   file.commit();
 }
@@ -281,7 +301,8 @@ void print_summary(const models::NoiseModel& model,
 void run_analyze(const AnalyzeArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   if (!(args.confidence > 0.0 && args.confidence < 1.0)) {
-    throw InputError("--confidence: expected a level in (0, 1), got " + shortest_number_text(args.confidence));
+    throw InputError("--confidence: expected a level in (0, 1), got " +
+                     shortest_number_text(args.confidence));
   }
   if (args.bootstrap == 1 || args.bootstrap < 0) {
     throw InputError("--bootstrap: expected 0 (off) or at least 2 replicates");
@@ -320,8 +341,9 @@ void run_analyze(const AnalyzeArgs& args) {
   options.fit.tau_min_s = args.tau_min_s;
   for (double f : args.sinusoid_hz) {
     if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
-      throw InputError("--sinusoid-hz: " + shortest_number_text(f) + " Hz is not in (0, Nyquist = " +
-                       shortest_number_text(0.5 / tau0_s) + " Hz)");
+      throw InputError("--sinusoid-hz: " + shortest_number_text(f) +
+                       " Hz is not in (0, Nyquist = " + shortest_number_text(0.5 / tau0_s) +
+                       " Hz)");
     }
   }
   options.fit.sinusoid_frequencies_hz = args.sinusoid_hz;
@@ -429,7 +451,7 @@ void register_analyze_command(CLI::App& app) {
       "  imunoise analyze imu.txt --config configs/example_input.yaml -o out --bootstrap 0\n"
       "Outputs: model.yaml (SI units named in every key, docs/model-yaml.md), allan.csv\n"
       "(OADEV/OHDEV with intervals and the model ADEV, per axis), psd.csv (log-binned one-sided\n"
-      "PSD with dof and the model PSD).");
+      "PSD with dof and the model PSD, per axis); units are part of every column name.");
   cmd->callback([args] { run_analyze(*args); });
 }
 

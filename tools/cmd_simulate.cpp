@@ -39,7 +39,6 @@ constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 /// model file, or "command-line flags" without one.
 using SimulationSetup = io::SimulationModelFile;
 
-
 /// Parses "2h", "30min", "600s" or "600" (seconds) into seconds.
 double parse_duration_s(const std::string& text) {
   double value = 0.0;
@@ -95,7 +94,8 @@ void write_header(std::ostream& out, const SimulationSetup& setup, const Simulat
   if (!setup.name.empty()) out << " (" << setup.name << ")";
   out << "\n# seed: " << args.seed << "\n# sample_rate_hz: " << shortest_number_text(rate_hz)
       << "\n# duration_s: " << shortest_number_text(duration_s) << "\n# samples: " << samples
-      << "\n# flicker_band_s: [" << shortest_number_text(band[0]) << ", " << shortest_number_text(band[1]) << "]\n";
+      << "\n# flicker_band_s: [" << shortest_number_text(band[0]) << ", "
+      << shortest_number_text(band[1]) << "]\n";
   const auto write_sensor = [&](std::string_view sensor_name, io::Sensor sensor,
                                 const std::array<io::SimulationAxis, 3>& axes) {
     for (std::size_t a = 0; a < 3; ++a) {
@@ -235,9 +235,9 @@ void run_simulate(const SimulateArgs& args) {
     done += static_cast<std::int64_t>(n);
   }
   file.commit();
-  std::cout << "imunoise simulate: wrote " << samples << " samples (" << shortest_number_text(duration_s)
-            << " s at " << shortest_number_text(rate_hz) << " Hz, seed " << args.seed << ") to "
-            << args.output << "\n";
+  std::cout << "imunoise simulate: wrote " << samples << " samples ("
+            << shortest_number_text(duration_s) << " s at " << shortest_number_text(rate_hz)
+            << " Hz, seed " << args.seed << ") to " << args.output << "\n";
 }
 
 }  // namespace

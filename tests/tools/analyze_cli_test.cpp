@@ -27,10 +27,10 @@ TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
              "accel:\n  vrw_m_per_s_sqrt_s: 1.471e-3\n"
              "  z: {specific_force_m_per_s2: -9.80665}\n");
   const auto rec = dir / "rec.csv";
-  ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 1h --seed 3 -o " +
-                         rec.string())
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run_imunoise("simulate " + model_file.string() + " --duration 1h --seed 3 -o " + rec.string())
+          .exit_code,
+      0);
   const auto out = dir / "out";
   const CommandResult r = run_imunoise("analyze " + rec.string() + " -o " + out.string() +
                                        " --bootstrap 20 --truth " + model_file.string());
@@ -69,8 +69,11 @@ TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
   EXPECT_GT(refit.size(), 3000u);  // 60 s at the model's 50 Hz, plus the header
   const auto psd = read_csv_rows(out / "psd.csv");
   ASSERT_GT(psd.size(), 10u);
-  EXPECT_EQ(psd[0][1], "frequency_hz");
-  EXPECT_EQ(psd[1][3], "rad2_per_s2_per_hz");
+  EXPECT_EQ(psd[0][0], "frequency_hz");
+  EXPECT_EQ(psd[0][1], "gyro_x_psd_rad2_per_s2_per_hz");
+  bool accel_psd_unit = false;
+  for (const auto& column : psd[0]) accel_psd_unit |= column == "accel_z_psd_m2_per_s4_per_hz";
+  EXPECT_TRUE(accel_psd_unit);
 }
 
 TEST(AnalyzeCli, ConstantChannelStopsWithAClearMessageAndNoOutput) {
@@ -80,8 +83,7 @@ TEST(AnalyzeCli, ConstantChannelStopsWithAClearMessageAndNoOutput) {
   csv << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n";
   for (int i = 0; i < 2000; ++i) csv << i * 0.01 << ",0.001,0.001,0.001\n";
   csv.close();
-  const CommandResult r =
-      run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
+  const CommandResult r = run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("constant"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
@@ -94,8 +96,7 @@ TEST(AnalyzeCli, TooShortRecordStopsWithAClearMessage) {
   csv << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n0,0.1,0.1,0.1\n"
          "0.01,0.2,0.1,0.1\n0.02,0.15,0.1,0.1\n0.03,0.3,0.1,0.1\n";
   csv.close();
-  const CommandResult r =
-      run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
+  const CommandResult r = run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("too few samples"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
@@ -108,8 +109,7 @@ TEST(AnalyzeCli, AllNanChannelIsRefusedNotWrittenAsNan) {
   csv << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n";
   for (int i = 0; i < 2000; ++i) csv << i * 0.01 << ",nan,nan,nan\n";
   csv.close();
-  const CommandResult r =
-      run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
+  const CommandResult r = run_imunoise("analyze " + rec.string() + " -o " + (dir / "out").string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_FALSE(r.err.empty());
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
