@@ -13,6 +13,7 @@ namespace imunoise::tools {
 void register_allan_command(CLI::App& app);     ///< imunoise allan
 void register_analyze_command(CLI::App& app);   ///< imunoise analyze (the whole job)
 void register_check_command(CLI::App& app);     ///< imunoise check (sampling report)
+void register_export_command(CLI::App& app);    ///< imunoise export (filter configs)
 void register_simulate_command(CLI::App& app);  ///< imunoise simulate
 
 }  // namespace imunoise::tools

@@ -1,0 +1,375 @@
+// Tests of io/filter_export.h: every conversion against the hand-computed values of
+// theory.md §8 (the worked example), the key sets of ../shared/docs/filter-formats.md, a real
+// parser for each file (yaml-cpp for YAML; OpenCV's FileStorage — the parser OpenVINS, VINS,
+// ORB-SLAM3 and OKVIS use — where it is installed), golden files, and the errors.
+//
+// Golden files: tests/io/golden/export_<format>.txt. After an intended change of the output,
+// regenerate with IMUNOISE_UPDATE_GOLDEN=1 and review the diff by hand.
+#include "io/filter_export.h"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "common/errors.h"
+#include "common/units.h"
+#include "io/noise_model_yaml.h"
+#include "test_support.h"
+
+#ifdef IMUNOISE_HAVE_OPENCV
+#include <opencv2/core/persistence.hpp>
+#endif
+
+namespace imunoise::io {
+namespace {
+
+using models::AxisModel;
+using models::Estimate;
+using models::NoiseModel;
+using models::Term;
+using test::expect_throw_containing;
+
+Estimate estimate(double value, double low, double high) {
+  Estimate e;
+  e.value = value;
+  e.ci_low = low;
+  e.ci_high = high;
+  e.identified = value > 0.0;
+  e.method = "wnnls-oavar";
+  return e;
+}
+
+AxisModel axis(const std::string& name, bool gyro, double n, double b, double k) {
+  AxisModel a;
+  a.name = name;
+  a.gyro = gyro;
+  a.terms[static_cast<int>(Term::quantization)] = estimate(0.0, 0.0, 0.1 * n);
+  a.terms[static_cast<int>(Term::white_noise)] = estimate(n, 0.98 * n, 1.02 * n);
+  a.terms[static_cast<int>(Term::bias_instability)] = estimate(b, 0.9 * b, 1.1 * b);
+  a.terms[static_cast<int>(Term::random_walk)] = estimate(k, 0.7 * k, 1.4 * k);
+  a.terms[static_cast<int>(Term::ramp)] = estimate(0.0, 0.0, 0.0);
+  a.tau_min_adev_s = 29.6;
+  a.fit_tau_min_s = 0.005;
+  a.fit_tau_max_s = 3600.0;
+  return a;
+}
+
+/// The theory.md §8 gyro on all three axes (N = 0.4 deg/√h, B = 25.2 deg/h, K = 84.24
+/// deg/h/√h, B → GM (b) of §8.3: σ = 1.314e-4 rad/s, T_c = 15.6 s) and the assumed
+/// accelerometer of §8.5 (150 µg/√Hz; B 0.05 mg; K 1e-4 m/s^2.5).
+NoiseModel worked_example() {
+  NoiseModel m;
+  m.sensor_name = "theory.md §8 consumer MEMS";
+  m.source = "worked-example.csv";
+  m.sample_rate_hz = 200.0;
+  m.duration_s = 28800.0;
+  m.samples = 5760000;
+  for (const char* name : {"gyro_x", "gyro_y", "gyro_z"}) {
+    auto a = axis(name, true, 0.4 * units::kDegPerSqrtHour, 25.2 * units::kDegPerHour,
+                  84.24 * units::kDegPerHourPerSqrtHour);
+    a.bias_instability_gm.push_back({"peak_match", {1.314e-4, 15.6}});
+    m.axes.push_back(a);
+  }
+  for (const char* name : {"accel_x", "accel_y", "accel_z"})
+    m.axes.push_back(
+        axis(name, false, 150.0 * units::kMicroGPerSqrtHz, 0.05 * units::kMilliG, 1e-4));
+  return m;
+}
+
+ExportRequest request(ExportFormat format, double rate_hz = 0.0, bool conservative = false) {
+  ExportRequest r;
+  r.format = format;
+  r.rate_hz = rate_hz;
+  r.parameters.conservative = conservative;
+  r.model_path = "worked-example.yaml";
+  r.command = "imunoise export worked-example.yaml --to " + std::string(export_format_name(format));
+  return r;
+}
+
+double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+/// The number after "KEY" and "=" on the header line that begins with "#   KEY = ".
+double header_value(const std::string& text, const std::string& key) {
+  const std::regex line("[#%]   " + std::regex_replace(key, std::regex(R"([\[\]().*])"), R"(\$&)") +
+                        R"( = [^=]+ = ([-0-9.e+]+) )");
+  std::smatch match;
+  if (!std::regex_search(text, match, line)) {
+    ADD_FAILURE() << "no conversion line for " << key;
+    return NAN;
+  }
+  return std::stod(match[1]);
+}
+
+std::set<std::string> keys_of(const YAML::Node& map) {
+  std::set<std::string> keys;
+  for (const auto& kv : map) keys.insert(kv.first.as<std::string>());
+  return keys;
+}
+
+TEST(FilterExport, KalibrKeysAndTheWorkedExampleDensities) {
+  const auto text = export_config(worked_example(), request(ExportFormat::kalibr, 200.0));
+  const auto yaml = YAML::Load(text);
+  // filter-formats.md, Kalibr: the flat keys of imu.yaml.
+  EXPECT_EQ(keys_of(yaml),
+            (std::set<std::string>{"accelerometer_noise_density", "accelerometer_random_walk",
+                                   "gyroscope_noise_density", "gyroscope_random_walk", "rostopic",
+                                   "update_rate"}));
+  // theory.md §8.2: gyroscope_noise_density 1.1636e-4, gyroscope_random_walk 6.807e-6.
+  EXPECT_LT(rel(yaml["gyroscope_noise_density"].as<double>(), 1.1636e-4), 5e-5);
+  EXPECT_LT(rel(yaml["gyroscope_random_walk"].as<double>(), 6.807e-6), 5e-5);
+  EXPECT_LT(rel(yaml["accelerometer_noise_density"].as<double>(), 1.47100e-3), 1e-5);
+  EXPECT_DOUBLE_EQ(yaml["update_rate"].as<double>(), 200.0);
+  // §8.2 discrete sigmas at 200 Hz (printed for the user): 1.6455e-3 and 4.813e-7 rad/s.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      text, m, std::regex(R"(sigma_d = N\*sqrt\(rate\): gyro ([0-9.e+-]+) rad/s)")));
+  EXPECT_LT(rel(std::stod(m[1]), 1.6455e-3), 5e-5);
+  ASSERT_TRUE(std::regex_search(
+      text, m, std::regex(R"(sigma_bd = K/sqrt\(rate\): gyro ([0-9.e+-]+) rad/s)")));
+  EXPECT_LT(rel(std::stod(m[1]), 4.813e-7), 1e-4);
+  // Best estimates drop B and say so.
+  EXPECT_NE(text.find("dropped: gyro B = 0.000122173 rad/s"), std::string::npos);
+}
+
+TEST(FilterExport, DiscreteSigmasAt100HzForPx4AndVins) {
+  // theory.md §8.2 at 100 Hz: σ_gd = 1.1636e-3 rad/s; PX4 bias noise K·√100 = 6.807e-5.
+  const auto px4 = export_config(worked_example(), request(ExportFormat::px4));
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(px4, m, std::regex("\n1\t1\tEKF2_GYR_NOISE\t([0-9.e+-]+)\t9\n")));
+  EXPECT_LT(rel(std::stod(m[1]), 1.1636e-3), 5e-5);
+  ASSERT_TRUE(std::regex_search(px4, m, std::regex("\n1\t1\tEKF2_GYR_B_NOISE\t([0-9.e+-]+)\t9\n")));
+  EXPECT_LT(rel(std::stod(m[1]), 6.807e-5), 5e-5);
+  ASSERT_TRUE(std::regex_search(px4, m, std::regex("\n1\t1\tEKF2_ACC_NOISE\t([0-9.e+-]+)\t9\n")));
+  EXPECT_LT(rel(std::stod(m[1]), 1.47100e-2), 1e-5);
+  // The accel bias noise 1e-3 is inside PX4's range; EKF2_ACC_NOISE 0.0147 too: no warning.
+  EXPECT_EQ(px4.find("WARNING"), std::string::npos);
+  // QGC: exactly 5 tab-separated fields on every non-comment line.
+  std::istringstream lines(px4);
+  int params = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    EXPECT_EQ(std::count(line.begin(), line.end(), '\t'), 4) << line;
+    ++params;
+  }
+  EXPECT_EQ(params, 4);
+
+  const auto vins = YAML::Load(export_config(worked_example(), request(ExportFormat::vins, 200.0)));
+  EXPECT_EQ(keys_of(vins), (std::set<std::string>{"acc_n", "gyr_n", "acc_w", "gyr_w", "g_norm"}));
+  EXPECT_LT(rel(vins["gyr_n"].as<double>(), 1.6455e-3), 5e-5);
+  EXPECT_LT(rel(vins["gyr_w"].as<double>(), 6.80678e-6 * std::sqrt(200.0)), 1e-5);
+}
+
+TEST(FilterExport, PositiveRangeWarningForPx4) {
+  auto quiet = worked_example();
+  for (auto& a : quiet.axes)
+    if (!a.gyro) a.terms[static_cast<int>(Term::white_noise)] = estimate(1e-4, 1e-4, 1e-4);
+  const auto px4 = export_config(quiet, request(ExportFormat::px4));
+  EXPECT_NE(px4.find("WARNING: EKF2_ACC_NOISE = 0.001 is outside PX4's allowed range [0.01, 1.0]"),
+            std::string::npos);
+}
+
+TEST(FilterExport, KfGinsUnitsAndGaussMarkovBias) {
+  const auto text = export_config(worked_example(), request(ExportFormat::kf_gins));
+  const auto yaml = YAML::Load(text);
+  EXPECT_EQ(keys_of(yaml), std::set<std::string>{"imunoise"});
+  EXPECT_EQ(keys_of(yaml["imunoise"]),
+            (std::set<std::string>{"arw", "vrw", "gbstd", "abstd", "gsstd", "asstd", "corrtime"}));
+  const auto n = yaml["imunoise"];
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(rel(n["arw"][i].as<double>(), 0.4), 1e-6);  // deg/√h
+    // m/s/√h: 150 µg/√Hz · 60 = 0.0882399
+    EXPECT_LT(rel(n["vrw"][i].as<double>(), 150e-6 * 9.80665 * 60.0), 1e-5);
+    // §8.3 (b) σ = 1.314e-4 rad/s = 27.103 deg/h
+    EXPECT_LT(rel(n["gbstd"][i].as<double>(), 1.314e-4 / (std::numbers::pi / 180.0 / 3600.0)),
+              1e-5);
+  }
+  // accel: B 0.05 mg → (b) computed: σ = 1.075996·B = 5.2761e-4 m/s² = 52.761 mGal
+  EXPECT_LT(rel(n["abstd"][0].as<double>(), 1.075996 * 0.05e-3 * 9.80665 / 1e-5), 1e-5);
+  EXPECT_LT(rel(n["corrtime"].as<double>(), 15.6 / 3600.0), 1e-5);  // hours
+  EXPECT_LT(rel(header_value(text, "gbstd[0]"), 27.1030), 1e-5);
+}
+
+TEST(FilterExport, YamlFormatsLoadAndCarryTheDocumentedKeys) {
+  const auto m = worked_example();
+  // OpenVINS: imu0 with the Kalibr keys and the intrinsics (filter-formats.md).
+  const auto ov = YAML::Load(export_config(m, request(ExportFormat::openvins)));
+  EXPECT_EQ(keys_of(ov["imu0"]),
+            (std::set<std::string>{
+                "T_i_b", "accelerometer_noise_density", "accelerometer_random_walk",
+                "gyroscope_noise_density", "gyroscope_random_walk", "rostopic", "time_offset",
+                "update_rate", "model", "Tw", "R_IMUtoGYRO", "Ta", "R_IMUtoACC", "Tg"}));
+  EXPECT_EQ(ov["imu0"]["T_i_b"].size(), 4u);
+  EXPECT_EQ(ov["imu0"]["Tg"][2][2].as<double>(), 0.0);
+  const auto orb = YAML::Load(export_config(m, request(ExportFormat::orbslam3)));
+  EXPECT_EQ(keys_of(orb), (std::set<std::string>{"IMU.NoiseGyro", "IMU.NoiseAcc", "IMU.GyroWalk",
+                                                 "IMU.AccWalk", "IMU.Frequency"}));
+  EXPECT_LT(rel(orb["IMU.NoiseGyro"].as<double>(), 1.1636e-4), 5e-5);
+  const auto okvis = YAML::Load(export_config(m, request(ExportFormat::okvis)));
+  EXPECT_EQ(
+      keys_of(okvis["imu_params"]),
+      (std::set<std::string>{"a_max", "g_max", "sigma_g_c", "sigma_a_c", "sigma_bg", "sigma_ba",
+                             "sigma_gw_c", "sigma_aw_c", "tau", "g", "a0", "imu_rate", "T_BS"}));
+  EXPECT_EQ(okvis["imu_params"]["T_BS"].size(), 16u);
+  const auto rl = YAML::Load(export_config(m, request(ExportFormat::robot_localization)));
+  const auto q = rl["ekf_filter_node"]["ros__parameters"]["process_noise_covariance"];
+  ASSERT_EQ(q.size(), 225u);
+  const double kg2 = std::pow(84.24 * units::kDegPerHourPerSqrtHour, 2);
+  EXPECT_LT(rel(q[9 * 15 + 9].as<double>(), kg2), 1e-5);     // vroll
+  EXPECT_LT(rel(q[14 * 15 + 14].as<double>(), 1e-8), 1e-5);  // az: K_a² = (1e-4)²
+  EXPECT_EQ(q[0].as<double>(), 0.0);
+  // Every entry a real (robot_localization declares a double array).
+  for (const auto& v : q) EXPECT_NE(v.as<std::string>().find('.'), std::string::npos);
+  // The native copy is the model itself.
+  const auto native = export_config(m, request(ExportFormat::native));
+  EXPECT_EQ(native, format_model_yaml(m));
+  EXPECT_EQ(format_model_yaml(parse_model_yaml(native, "native")), native);
+}
+
+TEST(FilterExport, ScriptFormatsCarryTheirKeys) {
+  const auto m = worked_example();
+  const auto py = export_config(m, request(ExportFormat::gnss_ins_sim));
+  for (const char* key : {"gyro_b", "gyro_arw", "gyro_b_stability", "gyro_b_corr", "accel_b",
+                          "accel_vrw", "accel_b_stability", "accel_b_corr"})
+    EXPECT_NE(py.find("    '" + std::string(key) + "': np.array(["), std::string::npos) << key;
+  EXPECT_NE(py.find("'gyro_arw': np.array([0.4, 0.4, 0.4])"), std::string::npos);
+  EXPECT_NE(py.find("'gyro_b_corr': np.array([15.6, 15.6, 15.6])"), std::string::npos);
+  const auto mat = export_config(m, request(ExportFormat::matlab));
+  EXPECT_NE(mat.find("gyro = gyroparams( ..."), std::string::npos);
+  EXPECT_NE(mat.find("accel = accelparams( ..."), std::string::npos);
+  EXPECT_LT(rel(header_value(mat, "gyro.BiasInstability(1)"), 1.22173e-4), 1e-5);
+  EXPECT_LT(rel(header_value(mat, "gyro.RandomWalk(3)"), 6.80678e-6), 1e-5);
+  // MATLAB comments start with %, and nothing else in the file uses #.
+  EXPECT_EQ(mat.find('#'), std::string::npos);
+}
+
+TEST(FilterExport, HeaderNamesSourceRulesAndConversions) {
+  const auto text = export_config(worked_example(), request(ExportFormat::orbslam3));
+  EXPECT_EQ(text.rfind("%YAML:1.0\n", 0), 0u);  // OpenCV needs it as the very first line
+  EXPECT_NE(text.find("# model: worked-example.yaml"), std::string::npos);
+  EXPECT_NE(text.find("# command: imunoise export worked-example.yaml --to orbslam3"),
+            std::string::npos);
+  EXPECT_NE(text.find("values: best estimates"), std::string::npos);
+  EXPECT_LT(rel(header_value(text, "IMU.GyroWalk"), 6.80678e-6), 1e-5);
+}
+
+TEST(FilterExport, ConservativeWritesTheFoldedOverbound) {
+  const auto m = worked_example();
+  auto r = request(ExportFormat::kalibr, 200.0, true);
+  const auto yaml = YAML::Load(export_config(m, r));
+  // Hand computation: N_up = 1.02 N, B_up = 1.1 B, K_up = 1.4 K, Q_up = 0.1 N (τ0 = 1/200),
+  // T = τ of the ADEV minimum = 29.6 s.
+  const double n = 1.02 * 0.4 * units::kDegPerSqrtHour;
+  const double b = 1.1 * 25.2 * units::kDegPerHour;
+  const double k = 1.4 * 84.24 * units::kDegPerHourPerSqrtHour;
+  const double q = 0.1 * 0.4 * units::kDegPerSqrtHour;
+  const double floor = 2.0 * std::numbers::ln2 / std::numbers::pi * b * b;
+  const double n2 = n * n + floor * 29.6 + 3.0 * q * q * 200.0;
+  const double k2 = k * k + 3.0 * floor / 29.6;
+  EXPECT_LT(rel(yaml["gyroscope_noise_density"].as<double>(), std::sqrt(n2)), 1e-5);
+  EXPECT_LT(rel(yaml["gyroscope_random_walk"].as<double>(), std::sqrt(k2)), 1e-5);
+  const auto text = export_config(m, r);
+  EXPECT_NE(text.find("values: conservative"), std::string::npos);
+  EXPECT_NE(text.find("N'^2 = N^2 + (2 ln2/pi) B^2 T"), std::string::npos);
+  // native refuses it: a copy cannot be conservative.
+  expect_throw_containing<InputError>(
+      [&] { export_config(m, request(ExportFormat::native, 0.0, true)); }, "--conservative");
+}
+
+TEST(FilterExport, ErrorsNameWhatIsMissing) {
+  auto m = worked_example();
+  for (auto& a : m.axes) a.terms[static_cast<int>(Term::random_walk)] = estimate(0.0, 0.0, 1e-6);
+  // Kalibr rejects a zero random walk; the error says how to get a usable file.
+  expect_throw_containing<InputError>(
+      [&] { export_config(m, request(ExportFormat::kalibr)); },
+      "_random_walk would be 0 (the term was not identified) and Kalibr requires > 0; "
+      "export with --conservative");
+  // The conservative export uses the upper bound instead.
+  const auto yaml = YAML::Load(export_config(m, request(ExportFormat::kalibr, 0.0, true)));
+  EXPECT_GT(yaml["gyroscope_random_walk"].as<double>(), 1e-6);
+  auto gyro_only = worked_example();
+  gyro_only.axes.resize(3);
+  expect_throw_containing<InputError>(
+      [&] { export_config(gyro_only, request(ExportFormat::openvins)); }, "no accel axes");
+  // MATLAB works with one sensor.
+  EXPECT_NO_THROW(export_config(gyro_only, request(ExportFormat::matlab)));
+  auto r = request(ExportFormat::vins);
+  r.rate_hz = -5.0;
+  EXPECT_THROW(export_config(worked_example(), r), InputError);
+}
+
+#ifdef IMUNOISE_HAVE_OPENCV
+/// Reads TEXT the way the filters do: cv::FileStorage in memory.
+cv::FileStorage open_like_the_filters(const std::string& text) {
+  return cv::FileStorage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+}
+
+TEST(FilterExportOpenCv, FileStorageReadsOpenVinsVinsOrbSlam3AndOkvis) {
+  const auto m = worked_example();
+  {  // OpenVINS: node[name][r][c] for matrices, reals for the densities.
+    auto fs = open_like_the_filters(export_config(m, request(ExportFormat::openvins)));
+    ASSERT_TRUE(fs.isOpened());
+    const auto imu = fs["imu0"];
+    EXPECT_TRUE(imu["gyroscope_noise_density"].isReal());
+    EXPECT_LT(rel(static_cast<double>(imu["gyroscope_noise_density"]), 1.1636e-4), 5e-5);
+    EXPECT_EQ(static_cast<double>(imu["T_i_b"][3][3]), 1.0);
+    EXPECT_EQ(static_cast<std::string>(imu["model"]), "kalibr");
+  }
+  {  // VINS: the five keys, as doubles.
+    auto fs = open_like_the_filters(export_config(m, request(ExportFormat::vins, 200.0)));
+    ASSERT_TRUE(fs.isOpened());
+    for (const char* key : {"acc_n", "gyr_n", "acc_w", "gyr_w", "g_norm"})
+      EXPECT_TRUE(fs[key].isReal()) << key;
+    EXPECT_LT(rel(static_cast<double>(fs["gyr_n"]), 1.6455e-3), 5e-5);
+  }
+  {  // ORB-SLAM3 v1.0 settings: readParameter<float> requires REAL nodes.
+    auto fs = open_like_the_filters(export_config(m, request(ExportFormat::orbslam3)));
+    ASSERT_TRUE(fs.isOpened());
+    for (const char* key :
+         {"IMU.NoiseGyro", "IMU.NoiseAcc", "IMU.GyroWalk", "IMU.AccWalk", "IMU.Frequency"})
+      EXPECT_TRUE(fs[key].isReal()) << key;
+  }
+  {  // OKVIS: VioParametersReader asserts isReal() on the sigmas and an integer imu_rate.
+    auto fs = open_like_the_filters(export_config(m, request(ExportFormat::okvis)));
+    ASSERT_TRUE(fs.isOpened());
+    const auto imu = fs["imu_params"];
+    for (const char* key : {"a_max", "g_max", "sigma_g_c", "sigma_a_c", "sigma_bg", "sigma_ba",
+                            "sigma_gw_c", "sigma_aw_c", "tau", "g"})
+      EXPECT_TRUE(imu[key].isReal()) << key;
+    EXPECT_TRUE(imu["imu_rate"].isInt());
+    EXPECT_TRUE(imu["a0"].isSeq());
+    EXPECT_EQ(imu["T_BS"].size(), 16u);
+  }
+}
+#endif
+
+TEST(FilterExport, GoldenFiles) {
+  const std::filesystem::path dir =
+      std::filesystem::path(IMUNOISE_SOURCE_DIR) / "tests" / "io" / "golden";
+  const bool update = std::getenv("IMUNOISE_UPDATE_GOLDEN") != nullptr;
+  const auto m = worked_example();
+  for (auto format : all_export_formats()) {
+    const auto text = export_config(m, request(format));
+    const auto path = dir / ("export_" + std::string(export_format_name(format)) + ".txt");
+    if (update) {
+      std::filesystem::create_directories(dir);
+      std::ofstream(path, std::ios::binary) << text;
+      continue;
+    }
+    std::ifstream in(path, std::ios::binary);
+    ASSERT_TRUE(in) << path << " missing: run with IMUNOISE_UPDATE_GOLDEN=1 and review it";
+    std::stringstream golden;
+    golden << in.rdbuf();
+    EXPECT_EQ(text, golden.str()) << "differs from " << path;
+  }
+}
+
+}  // namespace
+}  // namespace imunoise::io
