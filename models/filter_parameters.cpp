@@ -47,7 +47,7 @@ GaussMarkov bias_as_gm(const AxisModel& axis, double chosen_b, const FilterParam
   return {sigma, largest->value.tau_c_s};
 }
 
-SensorAxisParameters axis_parameters(const AxisModel& axis, const FilterParameterOptions& o) {
+SensorAxisParameters one_axis(const AxisModel& axis, const FilterParameterOptions& o) {
   SensorAxisParameters p;
   p.from = axis.name;
   const auto value = [&](Term t) {
@@ -162,7 +162,7 @@ std::optional<SensorParameters> sensor_parameters(const NoiseModel& model, bool 
     throw InputError("--axis each needs three " + sensor + " axes; the model has " +
                      std::to_string(axes.size()));
   std::vector<SensorAxisParameters> per_axis;
-  for (const AxisModel* a : axes) per_axis.push_back(axis_parameters(*a, o));
+  for (const AxisModel* a : axes) per_axis.push_back(one_axis(*a, o));
   auto out = combine(per_axis, gyro,
                      o.axis == AxisChoice::each ? AxisChoice::each
                      : axes.size() == 1         ? AxisChoice::worst
@@ -200,6 +200,11 @@ RandomWalkFold fold_into_random_walk(const NoiseCoefficients& c, double correcti
   if (c.quantization > 0.0) n2 += 3.0 * c.quantization * c.quantization * filter_rate_hz;
   if (c.ramp > 0.0) k2 += 1.5 * c.ramp * c.ramp * horizon_s;
   return {std::sqrt(n2), std::sqrt(k2)};
+}
+
+SensorAxisParameters axis_filter_parameters(const AxisModel& axis,
+                                            const FilterParameterOptions& options) {
+  return one_axis(axis, options);
 }
 
 FilterParameters select_filter_parameters(const NoiseModel& model,

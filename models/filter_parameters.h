@@ -67,6 +67,12 @@ struct FilterParameters {
   std::vector<std::string> rules;  ///< every selection/overbound rule applied, one per line
 };
 
+/// The parameters of one model axis under OPTIONS (the axis rule is not used): best or upper
+/// values, B as one GM by the convention, and the white + RW pair.
+/// @throws InputError as select_filter_parameters().
+SensorAxisParameters axis_filter_parameters(const AxisModel& axis,
+                                            const FilterParameterOptions& options);
+
 /// The parameters of MODEL under OPTIONS.
 /// @throws InputError when OPTIONS asks for an axis the model lacks, the GM conversion of B
 ///   needs τ of the ADEV minimum and the model has none, or filter_rate_hz ≤ 0.

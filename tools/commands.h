@@ -10,10 +10,11 @@ class App;
 
 namespace imunoise::tools {
 
-void register_allan_command(CLI::App& app);     ///< imunoise allan
-void register_analyze_command(CLI::App& app);   ///< imunoise analyze (the whole job)
-void register_check_command(CLI::App& app);     ///< imunoise check (sampling report)
-void register_export_command(CLI::App& app);    ///< imunoise export (filter configs)
-void register_simulate_command(CLI::App& app);  ///< imunoise simulate
+void register_allan_command(CLI::App& app);       ///< imunoise allan
+void register_analyze_command(CLI::App& app);     ///< imunoise analyze (the whole job)
+void register_check_command(CLI::App& app);       ///< imunoise check (sampling report)
+void register_export_command(CLI::App& app);      ///< imunoise export (filter configs)
+void register_discretize_command(CLI::App& app);  ///< imunoise discretize (Phi, Qd)
+void register_simulate_command(CLI::App& app);    ///< imunoise simulate
 
 }  // namespace imunoise::tools

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   imunoise::tools::register_check_command(app);
   imunoise::tools::register_simulate_command(app);
   imunoise::tools::register_export_command(app);
+  imunoise::tools::register_discretize_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
