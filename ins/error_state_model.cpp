@@ -28,7 +28,8 @@ Matrix3d skew(const Vector3d& a) {
 /// The 9×9 navigation block of F in (δψ, δv^n, δr^n metres NED); see the header for the
 /// equations. Position is handled as p = (L, λ, h) first (Groves 14.64–14.71 with the
 /// radius and gravity latitude derivatives kept), then carried to metres.
-NavigationMatrix navigation_dynamics(const NominalState& nominal) {
+/// EARTH_RATE false sets Ω_ie (and so its latitude derivative) to 0.
+NavigationMatrix navigation_dynamics(const NominalState& nominal, bool earth_rate) {
   const double lat = nominal.latitude_rad, h = nominal.height_m;
   const double s = std::sin(lat), c = std::cos(lat), t = std::tan(lat);
   const double rn = meridian_radius(lat) + h;            // R_N + h
@@ -38,7 +39,7 @@ NavigationMatrix navigation_dynamics(const NominalState& nominal) {
   const Vector3d& v = nominal.v_ned_m_per_s;
   const double vn = v.x(), ve = v.y(), vd = v.z();
 
-  const Vector3d w_ie = earth_rate_ned(lat);
+  const Vector3d w_ie = earth_rate ? earth_rate_ned(lat) : Vector3d::Zero();
   const Vector3d w_en = transport_rate_ned(lat, h, v);
   const Vector3d f_n = nominal.C_bn * nominal.f_ib_b_m_per_s2;
 
@@ -47,7 +48,7 @@ NavigationMatrix navigation_dynamics(const NominalState& nominal) {
   den_dv << 0.0, 1.0 / re, 0.0, -1.0 / rn, 0.0, 0.0, 0.0, -t / re, 0.0;
   // ∂ω_ie^n/∂p and ∂ω_en^n/∂p, columns (L, λ, h); nothing depends on λ.
   Matrix3d die_dp = Matrix3d::Zero();
-  die_dp.col(0) = wgs84::kEarthRate * Vector3d(-s, 0.0, -c);
+  if (earth_rate) die_dp.col(0) = wgs84::kEarthRate * Vector3d(-s, 0.0, -c);
   Matrix3d den_dp = Matrix3d::Zero();
   den_dp.col(0) << -ve * dre / (re * re), vn * drn / (rn * rn),
       -ve * (1.0 / (re * c * c) - t * dre / (re * re));
@@ -231,7 +232,7 @@ models::ContinuousStateModel ins_error_state_model(const NominalState& nominal,
   model.state_names.resize(static_cast<std::size_t>(n));
   model.noise_names.resize(static_cast<std::size_t>(p));
 
-  model.F.topLeftCorner<9, 9>() = navigation_dynamics(nominal);
+  model.F.topLeftCorner<9, 9>() = navigation_dynamics(nominal, options.earth_rate);
   const int a = Layout::kAttitude, u = Layout::kVelocity;
   for (int i = 0; i < 3; ++i) {
     model.state_names[a + i] = std::string("att_err_") + kNed[i] + "_rad";

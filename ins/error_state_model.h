@@ -73,6 +73,11 @@ struct ErrorStateOptions {
   /// stationary-analysis convention of theory.md §7.2 (the physical vertical channel is
   /// unstable, e-folding √(R/2g) ≈ 570 s). Horizontal errors are then the ones to report.
   bool height_hold = false;
+  /// false: Ω_ie = 0 in the navigation block of F — no Earth-rate term in δψ̇, no Coriolis
+  /// term in δv̇, no ∂ω_ie/∂L — leaving Schuler coupling only, the simplification of the
+  /// single-channel analyses of theory.md §7.5 and §8.4. The nominal itself (its sensed
+  /// ω_ib^b, used only by the gyro scale-factor coupling) and gravity are unchanged.
+  bool earth_rate = true;
 };
 
 /// Where each block sits in the state and noise vectors of ins_error_state_model().
@@ -121,7 +126,7 @@ ErrorStateLayout error_state_layout(const ErrorStateOptions& options);
 /// the exact Jacobian of the §7.2 mechanization (the extra terms are ≤ e² relative to their
 /// neighbours, or ~1e-8 s⁻² for ∂g_D/∂L per metre north; tests check F by finite differences).
 /// The vertical δr_D → δv_D term is ∂g_D/∂h of gravity_ned() (≈ 2g/R, unstable) unless
-/// options.height_hold.
+/// options.height_hold. options.earth_rate = false drops every Ω_ie term.
 ///
 /// Sensor blocks: δψ̇ += C_bn(b_g [+ b_g,gm] + diag(ω_ib^b) s_g + n_g), δv̇ += C_bn(b_a
 /// [+ b_a,gm] + diag(f_ib^b) s_a + n_a); RW biases F = 0; GM biases F = −1/T_c; scale factors

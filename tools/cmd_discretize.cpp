@@ -18,6 +18,7 @@
 #include "common/number_text.h"
 #include "common/units.h"
 #include "ins/error_state_model.h"
+#include "ins/noise_from_model.h"
 #include "io/atomic_output.h"
 #include "io/noise_model_yaml.h"
 #include "models/filter_parameters.h"
@@ -111,19 +112,13 @@ models::ContinuousStateModel sensor_states(const models::NoiseModel& model, cons
   return models::block_diagonal(blocks);
 }
 
-ins::SensorAxisNoise ins_axis(const models::SensorAxisParameters& p, ins::BiasModel bias,
-                              double scale_sigma, const std::string& name,
-                              std::vector<std::string>& notes) {
-  ins::SensorAxisNoise n;
-  n.white_noise = p.white_noise;
-  n.random_walk = p.random_walk;
-  n.bias_gm = p.bias_gm;
-  n.scale_factor_sigma = scale_sigma;
-  if (bias == ins::BiasModel::random_walk && p.bias_gm.sigma > 0.0)
+/// Notes for the terms of one INS axis that BIAS cannot carry (ins_error_state_model drops them).
+void note_dropped_terms(const ins::SensorAxisNoise& n, ins::BiasModel bias, const std::string& name,
+                        std::vector<std::string>& notes) {
+  if (bias == ins::BiasModel::random_walk && n.bias_gm.sigma > 0.0)
     notes.push_back(name + ": bias instability / GM not represented (--bias rw)");
-  if (bias == ins::BiasModel::gauss_markov && p.random_walk > 0.0)
+  if (bias == ins::BiasModel::gauss_markov && n.random_walk > 0.0)
     notes.push_back(name + ": random walk K not represented (--bias gm)");
-  return n;
 }
 
 nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
@@ -173,25 +168,27 @@ void run_discretize(const DiscretizeArgs& a) {
     continuous = sensor_states(model, a, options, white, notes);
     description = "per-axis sensor error states (theory.md §6.1); white noise is an input";
   } else {
-    int gyro_axes = 0, accel_axes = 0;
-    for (const auto& axis : model.axes) (axis.gyro ? gyro_axes : accel_axes) += 1;
-    if (gyro_axes != 3 || accel_axes != 3)
-      throw InputError(a.model_path + ": --states " + a.states +
-                       " needs three gyro and three accel axes; the model has " +
-                       std::to_string(gyro_axes) + " and " + std::to_string(accel_axes));
-    const auto params = models::select_filter_parameters(model, options);
-    const auto bias = kBiasModels.at(a.bias);
+    ins::InsNoiseOptions noise_options;
+    noise_options.conservative = a.conservative;
+    noise_options.gm_convention = options.gm_convention;
     ins::InsSensorNoise noise;
+    try {
+      noise = ins::ins_sensor_noise(model, noise_options);
+    } catch (const InputError& e) {
+      throw InputError(a.model_path + ": --states " + a.states + ": " + e.what());
+    }
+    const auto bias = kBiasModels.at(a.bias);
+    const char* const xyz[] = {"x", "y", "z"};
     for (int i = 0; i < 3; ++i) {
-      const char* xyz[] = {"x", "y", "z"};
-      noise.gyro[i] = ins_axis(params.gyro->axes[i], bias, a.gyro_scale_sigma_ppm * 1e-6,
-                               std::string("gyro_") + xyz[i], notes);
-      noise.accel[i] = ins_axis(params.accel->axes[i], bias, a.accel_scale_sigma_ppm * 1e-6,
-                                std::string("accel_") + xyz[i], notes);
-      white.push_back({params.gyro->axes[i].from, params.gyro->axes[i].white_noise, true});
+      noise.gyro[i].scale_factor_sigma = a.gyro_scale_sigma_ppm * 1e-6;
+      noise.accel[i].scale_factor_sigma = a.accel_scale_sigma_ppm * 1e-6;
+      note_dropped_terms(noise.gyro[i], bias, std::string("gyro_") + xyz[i], notes);
+      note_dropped_terms(noise.accel[i], bias, std::string("accel_") + xyz[i], notes);
     }
     for (int i = 0; i < 3; ++i)
-      white.push_back({params.accel->axes[i].from, params.accel->axes[i].white_noise, false});
+      white.push_back({std::string("gyro_") + xyz[i], noise.gyro[i].white_noise, true});
+    for (int i = 0; i < 3; ++i)
+      white.push_back({std::string("accel_") + xyz[i], noise.accel[i].white_noise, false});
     ins::ErrorStateOptions o;
     o.scale_factors = a.states == "21";
     o.bias = bias;

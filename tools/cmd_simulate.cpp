@@ -28,6 +28,7 @@
 #include "io/simulation_model.h"
 #include "models/noise_simulator.h"
 #include "tools/commands.h"
+#include "tools/duration.h"
 
 namespace imunoise::tools {
 
@@ -38,29 +39,6 @@ constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 /// Everything `simulate` needs, after the model file and the flags are merged; `source` is the
 /// model file, or "command-line flags" without one.
 using SimulationSetup = io::SimulationModelFile;
-
-/// Parses "2h", "30min", "600s" or "600" (seconds) into seconds.
-double parse_duration_s(const std::string& text) {
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  const std::string_view unit(ptr, static_cast<std::size_t>(end - ptr));
-  double scale = 0.0;
-  if (unit.empty() || unit == "s") {
-    scale = 1.0;
-  } else if (unit == "min") {
-    scale = 60.0;
-  } else if (unit == "h") {
-    scale = units::kHour;
-  }
-  if (ec != std::errc() || scale == 0.0 || !std::isfinite(value) || !(value > 0.0)) {
-    throw InputError(
-        "--duration: expected a positive number with unit s, min or h (e.g. 2h, "
-        "30min, 600s), got '" +
-        text + "'");
-  }
-  return value * scale;
-}
 
 /// Command-line values, in the units their flag names state.
 struct SimulateArgs {
@@ -175,7 +153,7 @@ void run_simulate(const SimulateArgs& args) {
   for (const auto& [option, apply] : args.overrides) {
     if (option->count() > 0) apply(setup);
   }
-  const double duration_s = parse_duration_s(args.duration);
+  const double duration_s = parse_duration_s(args.duration, "--duration");
   double rate_hz = args.rate_hz;
   if (rate_hz == 0.0) {
     if (!setup.sample_rate_hz) {

@@ -15,6 +15,7 @@ void register_analyze_command(CLI::App& app);     ///< imunoise analyze (the who
 void register_check_command(CLI::App& app);       ///< imunoise check (sampling report)
 void register_export_command(CLI::App& app);      ///< imunoise export (filter configs)
 void register_discretize_command(CLI::App& app);  ///< imunoise discretize (Phi, Qd)
+void register_drift_command(CLI::App& app);       ///< imunoise drift (INS drift vs model)
 void register_simulate_command(CLI::App& app);    ///< imunoise simulate
 
 }  // namespace imunoise::tools

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   imunoise::tools::register_simulate_command(app);
   imunoise::tools::register_export_command(app);
   imunoise::tools::register_discretize_command(app);
+  imunoise::tools::register_drift_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

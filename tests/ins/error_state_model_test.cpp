@@ -438,6 +438,45 @@ TEST(InsErrorStateModel, SchulerPeriodAt45DegIs84_4Minutes) {
   RecordProperty("foucault_split_rad_per_s", std::to_string(split));
 }
 
+TEST(InsErrorStateModel, WithoutEarthRateOnlySchulerCouplingRemains) {
+  // earth_rate = false (theory.md §8.4 "Earth-rate and Coriolis coupling neglected"): at rest
+  // δψ̇ = F₁₂δv and δv̇ = −f^n×δψ + δg; the −[ω_ie×] attitude block, the −2[ω_ie×] Coriolis
+  // block and ∂ω_ie/∂L are gone, the Foucault split vanishes and ±iω_s remains.
+  auto options = options_of(BiasModel::random_walk, false, true);
+  options.earth_rate = false;
+  const NominalState rest = stationary_nominal(kLat45, 0.0, 0.0);
+  const MatrixXd F_off = ins_error_state_model(rest, InsSensorNoise{}, options).F;
+  options.earth_rate = true;
+  const MatrixXd F_on = ins_error_state_model(rest, InsSensorNoise{}, options).F;
+  const Vector3d w_ie = earth_rate_ned(kLat45);
+  const auto skew = [](const Vector3d& a) {
+    Matrix3d m;
+    m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+    return m;
+  };
+  MatrixXd expected_difference = MatrixXd::Zero(F_on.rows(), F_on.cols());
+  expected_difference.block<3, 3>(Layout::kAttitude, Layout::kAttitude) = -skew(w_ie);
+  expected_difference.block<3, 3>(Layout::kVelocity, Layout::kVelocity) = -2.0 * skew(w_ie);
+  expected_difference.row(Layout::kVelocity + 2).setZero();  // height hold
+  // −∂ω_ie/∂L / (R_N + h) in the δψ/δr_N column.
+  expected_difference.block<3, 1>(Layout::kAttitude, Layout::kPosition) =
+      wgs84::kEarthRate * Vector3d(std::sin(kLat45), 0.0, std::cos(kLat45)) /
+      meridian_radius(kLat45);
+  EXPECT_LT((F_on - F_off - expected_difference).cwiseAbs().maxCoeff(), 1e-18);
+  const Eigen::VectorXcd eig = Eigen::EigenSolver<MatrixXd>(F_off).eigenvalues();
+  const double omega_s = std::sqrt(gravity_ned(kLat45, 0.0).z() /
+                                   std::sqrt(meridian_radius(kLat45) * transverse_radius(kLat45)));
+  int schuler = 0;
+  for (const auto& z : eig) {
+    EXPECT_LT(std::abs(z.real()), 1e-9) << z;
+    if (z.imag() > 1e-4) {
+      ++schuler;
+      EXPECT_NEAR(z.imag() / omega_s, 1.0, 0.005) << z;
+    }
+  }
+  EXPECT_EQ(schuler, 2);  // the N and E channels, now at the same frequency
+}
+
 TEST(InsErrorStateModel, VerticalChannelDivergesWithoutHeightHold) {
   // Free: one real eigenvalue ≈ +√(2g/R), e-folding ≈ 570 s (theory.md §7.2). Held: none.
   const Eigen::VectorXcd free =

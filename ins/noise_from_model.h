@@ -1,0 +1,36 @@
+/// @file
+/// @brief The IMU noise of a fitted models::NoiseModel as the per-axis InsSensorNoise of the
+/// INS error-state model (theory.md §6.3): white noise N, bias random walk K and bias
+/// instability B as one first-order Gauss–Markov term (theory.md §4.4) for each body axis.
+#pragma once
+
+#include "ins/error_state_model.h"
+#include "models/bias_instability_gm.h"
+#include "models/noise_model.h"
+
+namespace imunoise::ins {
+
+struct InsNoiseOptions {
+  /// false: point estimates; true: the upper end of each coefficient's interval (a term not
+  /// identified: its upper bound), as models::FilterParameterOptions::conservative. Nothing
+  /// is folded: the error-state model carries N, K and the GM separately.
+  bool conservative = false;
+  /// Which single GM stands for B (theory.md §4.4 (a)–(c)).
+  models::GmConvention gm_convention = models::GmConvention::peak_match;
+};
+
+/// Per body axis x, y, z of the gyro and the accelerometer: white_noise = N,
+/// random_walk = K and bias_gm = B as one GM by options.gm_convention (without B, the
+/// largest fitted GM term; σ = 0 when neither), all from
+/// models::select_filter_parameters(MODEL, {axis = each, conservative, gm_convention,
+/// filter_rate_hz = MODEL.sample_rate_hz}) — the rate only bounds a quantization fold that is
+/// not used here. Axes are matched to x, y, z by their name suffix (_x, _y, _z), else in model
+/// order. Quantization, ramp, sinusoids and further GM terms are not carried (callers that
+/// need them note it). turn_on_bias_sigma and scale_factor_sigma stay 0: a stationary noise
+/// fit cannot see constants (AVAR is blind to them, theory.md §7.7), so they are the caller's.
+/// @throws InputError unless MODEL has exactly three gyro and three accel axes ("... needs
+///   three gyro and three accel axes; the model has G and A"), when its sample_rate_hz is
+///   not > 0, or as select_filter_parameters() (e.g. B without τ of the ADEV minimum).
+InsSensorNoise ins_sensor_noise(const models::NoiseModel& model, const InsNoiseOptions& options);
+
+}  // namespace imunoise::ins
