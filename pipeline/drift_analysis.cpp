@@ -80,6 +80,7 @@ SegmentDrift run_segment(const ImuSeries& s, std::size_t first, std::size_t n_al
   const Eigen::Vector3d bias = out.alignment.gyro_bias_estimate_rad_per_s;
   out.position_error_ne_m.reserve(count);
   out.velocity_error_horizontal_m_per_s.reserve(count);
+  out.attitude_error_ned_rad.reserve(count);
   std::size_t k = first + n_align;
   for (std::size_t p = 0; p < count; ++p) {
     for (std::size_t j = 0; j < stride; ++j, ++k) {
@@ -91,6 +92,9 @@ SegmentDrift run_segment(const ImuSeries& s, std::size_t first, std::size_t n_al
     out.position_error_ne_m.push_back(
         ins::horizontal_offset_m(nav, o.latitude_rad, o.longitude_rad));
     out.velocity_error_horizontal_m_per_s.push_back(nav.v_ned_m_per_s.head<2>().norm());
+    // Ĉ_bn(t) = (I + [δψ×]) Ĉ_bn(0): the rotation q(t)·q(0)⁻¹ expressed in NED.
+    const Eigen::AngleAxisd change(nav.q_bn * start.q_bn.conjugate());
+    out.attitude_error_ned_rad.push_back(change.angle() * change.axis());
   }
   return out;
 }

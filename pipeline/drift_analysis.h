@@ -72,6 +72,9 @@ struct SegmentDrift {
   ins::Alignment alignment;
   std::vector<Eigen::Vector2d> position_error_ne_m;  ///< [north, east] at each output time
   std::vector<double> velocity_error_horizontal_m_per_s;
+  /// Attitude change since the end of the alignment, as the small rotation δψ resolved in NED
+  /// [rad] (north, east, down): the truth is at rest, so any change is error.
+  std::vector<Eigen::Vector3d> attitude_error_ned_rad;
 };
 
 /// Consistency of actual and predicted drift at one time (theory.md §7.7).

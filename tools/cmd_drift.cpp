@@ -136,7 +136,8 @@ void run_drift(DriftArgs a) {
 
   std::ostringstream seg;
   seg << "segment,start_s,time_s,north_error_m,east_error_m,horizontal_error_m,"
-         "horizontal_velocity_error_m_per_s\n";
+         "horizontal_velocity_error_m_per_s,attitude_error_north_deg,attitude_error_east_deg,"
+         "attitude_error_down_deg\n";
   for (std::size_t k = 0; k < drift.segments.size(); ++k) {
     const auto& s = drift.segments[k];
     for (std::size_t i = 0; i < drift.time_s.size(); ++i) {
@@ -144,7 +145,10 @@ void run_drift(DriftArgs a) {
       seg << k << ',' << shortest_number_text(s.start_s) << ','
           << shortest_number_text(drift.time_s[i]) << ',' << shortest_number_text(e(0)) << ','
           << shortest_number_text(e(1)) << ',' << shortest_number_text(e.norm()) << ','
-          << shortest_number_text(s.velocity_error_horizontal_m_per_s[i]) << '\n';
+          << shortest_number_text(s.velocity_error_horizontal_m_per_s[i]);
+      for (int a = 0; a < 3; ++a)
+        seg << ',' << shortest_number_text(s.attitude_error_ned_rad[i](a) / units::kDeg);
+      seg << '\n';
     }
   }
   io::write_file_atomically((dir / "drift_segments.csv").string(), seg.str());

@@ -102,6 +102,10 @@ TEST(DriftAnalysis, CovariancePredictionIsConsistentWithSimulatedSegments) {
   const auto rec = simulate(noise, 60 * 150.0, 7);
   const auto drift = analyze_drift(rec.series(), noise, options());
   ASSERT_EQ(drift.segments.size(), 60u);
+  for (const auto& seg : drift.segments) {
+    ASSERT_EQ(seg.attitude_error_ned_rad.size(), drift.time_s.size());
+    ASSERT_EQ(seg.position_error_ne_m.size(), drift.time_s.size());
+  }
   ASSERT_EQ(drift.consistency.size(), 2u);
   const std::array<double, 3> expected{1 - std::exp(-0.5), 1 - std::exp(-2.0), 1 - std::exp(-4.5)};
   for (const auto& c : drift.consistency) {

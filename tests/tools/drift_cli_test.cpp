@@ -85,7 +85,8 @@ TEST(DriftCli, WritesSegmentsEnvelopeAndSummary) {
   EXPECT_NE(r.out.find("location not given: assumed 45 deg N"), std::string::npos);
   EXPECT_EQ(first_line(out / "drift_segments.csv"),
             "segment,start_s,time_s,north_error_m,east_error_m,horizontal_error_m,"
-            "horizontal_velocity_error_m_per_s");
+            "horizontal_velocity_error_m_per_s,attitude_error_north_deg,"
+            "attitude_error_east_deg,attitude_error_down_deg");
   EXPECT_NE(first_line(out / "drift_envelope.csv").find("predicted_horizontal_drms_m"),
             std::string::npos);
   EXPECT_NE(first_line(out / "drift_envelope.csv").find("mc_radial_rms_m"), std::string::npos);
