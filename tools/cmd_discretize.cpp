@@ -24,6 +24,7 @@
 #include "models/filter_parameters.h"
 #include "models/state_space.h"
 #include "tools/commands.h"
+#include "tools/gm_convention_option.h"
 
 namespace imunoise::tools {
 namespace {
@@ -47,11 +48,6 @@ struct DiscretizeArgs {
 const std::map<std::string, ins::BiasModel> kBiasModels{{"rw", ins::BiasModel::random_walk},
                                                         {"gm", ins::BiasModel::gauss_markov},
                                                         {"both", ins::BiasModel::both}};
-
-const std::map<std::string, models::GmConvention> kGmConventions{
-    {"min_adev_at_tau_min", models::GmConvention::min_adev_at_tau_min},
-    {"peak_match", models::GmConvention::peak_match},
-    {"sigma_equals_b", models::GmConvention::sigma_equals_b}};
 
 /// Renames the states of BLOCK: NAME → NAME_UNIT (state_space labels carry no unit).
 models::ContinuousStateModel with_units(models::ContinuousStateModel block,
@@ -157,7 +153,7 @@ void run_discretize(const DiscretizeArgs& a) {
   models::FilterParameterOptions options;
   options.axis = models::AxisChoice::each;
   options.conservative = a.conservative;
-  options.gm_convention = kGmConventions.at(a.gm_convention);
+  options.gm_convention = gm_conventions().at(a.gm_convention);
   options.filter_rate_hz = 1.0 / a.dt_s;
 
   std::vector<WhiteNoise> white;
@@ -298,7 +294,7 @@ void register_discretize_command(CLI::App& app) {
   sub->add_option("--gm-convention", args->gm_convention,
                   "B as one GM (theory.md §4.4): min_adev_at_tau_min, peak_match (default), "
                   "sigma_equals_b")
-      ->check(CLI::IsMember(kGmConventions));
+      ->check(CLI::IsMember(gm_conventions()));
   sub->add_option("--latitude", args->latitude_deg, "INS nominal latitude [deg] (default 45)")
       ->check(CLI::Range(-89.9, 89.9));
   sub->add_option("--height", args->height_m, "INS nominal height [m] (default 0)");

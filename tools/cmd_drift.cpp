@@ -25,6 +25,7 @@
 #include "pipeline/drift_analysis.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
+#include "tools/gm_convention_option.h"
 #include "tools/input_options.h"
 
 namespace imunoise::tools {
@@ -54,11 +55,6 @@ struct DriftArgs {
   std::string output;
 };
 
-const std::map<std::string, models::GmConvention> kGmConventions{
-    {"min_adev_at_tau_min", models::GmConvention::min_adev_at_tau_min},
-    {"peak_match", models::GmConvention::peak_match},
-    {"sigma_equals_b", models::GmConvention::sigma_equals_b}};
-
 std::string fixed(double v, int digits = 4) {
   std::ostringstream s;
   s.precision(digits);
@@ -72,7 +68,7 @@ void run_drift(DriftArgs a) {
                      std::to_string(a.location.size()) + " values");
   const auto model = io::load_model_yaml(a.model_path);
   ins::InsNoiseOptions noise_options;
-  noise_options.gm_convention = kGmConventions.at(a.gm_convention);
+  noise_options.gm_convention = gm_conventions().at(a.gm_convention);
   const auto noise = ins::ins_sensor_noise(model, noise_options);
 
   pipeline::DriftOptions o;
@@ -296,7 +292,7 @@ void register_drift_command(CLI::App& app) {
   cmd->add_option("--gm-convention", args->gm_convention,
                   "B as one GM in the prediction (theory.md §4.4): min_adev_at_tau_min, "
                   "peak_match (default), sigma_equals_b")
-      ->check(CLI::IsMember(kGmConventions));
+      ->check(CLI::IsMember(gm_conventions()));
   cmd->add_flag("--force", args->force, "run even if the IMU moves or the record has gaps");
   cmd->add_option("-o,--output", args->output, "output directory (created if needed)")->required();
   cmd->callback([args, location] {

@@ -15,6 +15,7 @@
 #include "io/filter_export.h"
 #include "io/noise_model_yaml.h"
 #include "tools/commands.h"
+#include "tools/gm_convention_option.h"
 
 namespace imunoise::tools {
 namespace {
@@ -34,11 +35,6 @@ const std::map<std::string, models::AxisChoice> kAxisChoices{
     {"worst", models::AxisChoice::worst}, {"mean", models::AxisChoice::mean},
     {"x", models::AxisChoice::x},         {"y", models::AxisChoice::y},
     {"z", models::AxisChoice::z},         {"each", models::AxisChoice::each}};
-
-const std::map<std::string, models::GmConvention> kGmConventions{
-    {"min_adev_at_tau_min", models::GmConvention::min_adev_at_tau_min},
-    {"peak_match", models::GmConvention::peak_match},
-    {"sigma_equals_b", models::GmConvention::sigma_equals_b}};
 
 std::string format_names() {
   std::string names;
@@ -65,7 +61,7 @@ void run_export(const ExportArgs& a, bool axis_given) {
   request.rate_hz = a.rate_hz;
   request.parameters.axis = kAxisChoices.at(a.axis);
   request.parameters.conservative = a.conservative;
-  request.parameters.gm_convention = kGmConventions.at(a.gm_convention);
+  request.parameters.gm_convention = gm_conventions().at(a.gm_convention);
   request.parameters.correction_interval_s = a.correction_interval_s;
   request.model_path = a.model_path;
 
@@ -129,7 +125,7 @@ void register_export_command(CLI::App& app) {
   sub->add_option("--gm-convention", args->gm_convention,
                   "bias instability as one Gauss-Markov term (theory.md §4.4): "
                   "min_adev_at_tau_min, peak_match (default), sigma_equals_b")
-      ->check(CLI::IsMember(kGmConventions));
+      ->check(CLI::IsMember(gm_conventions()));
   sub->add_option("--correction-interval", args->correction_interval_s,
                   "T [s] of the conservative B fold (default: the τ of the ADEV minimum)")
       ->check(CLI::PositiveNumber);
