@@ -1,0 +1,440 @@
+/// @file
+/// @brief LCM event-log reader (see lcm_log.h for the format and the error contract).
+#include "io/lcm_log.h"
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <imunoise/allan_curve_t.hpp>
+#include <imunoise/drift_prediction_t.hpp>
+#include <imunoise/imu_sample_t.hpp>
+#include <imunoise/noise_model_t.hpp>
+#include <span>
+#include <string_view>
+#include <system_error>
+#include <utility>
+
+#include "common/errors.h"
+#include "io/sampling_report.h"
+
+namespace imunoise::io {
+namespace {
+
+constexpr std::uint32_t kSyncWord = 0xEDA1DA01u;
+constexpr std::uint64_t kHeaderBytes = 28;  // sync 4 + event number 8 + time 8 + lengths 4 + 4
+constexpr std::uint64_t kFingerprintBytes = 8;
+// LCM itself refuses channel names of 64 bytes or more when publishing; anything far beyond
+// that in a log is corruption, not a name.
+constexpr std::uint32_t kMaxChannelLength = 4096;
+
+/// Big-endian loads by shifts (no aliasing, no alignment assumption).
+std::uint32_t load_be32(const unsigned char* p) {
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
+         std::uint32_t{p[3]};
+}
+std::uint64_t load_be64(const unsigned char* p) {
+  return (std::uint64_t{load_be32(p)} << 32) | std::uint64_t{load_be32(p + 4)};
+}
+
+std::string hex32(std::uint32_t v) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out = "0x";
+  for (int shift = 28; shift >= 0; shift -= 4) out.push_back(kDigits[(v >> shift) & 0xFu]);
+  return out;
+}
+
+/// A channel name fit for a message: printable ASCII kept, other bytes as \xNN.
+std::string printable(std::string_view name) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out = "'";
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7F && c != '\\') {
+      out.push_back(c);
+    } else {
+      out.append("\\x").push_back(kDigits[u >> 4]);
+      out.push_back(kDigits[u & 0xFu]);
+    }
+  }
+  out.push_back('\'');
+  return out;
+}
+
+struct KnownType {
+  std::uint64_t fingerprint;
+  const char* name;
+};
+
+/// Our message types (lcmtypes/), by fingerprint.
+const std::array<KnownType, 4>& known_types() {
+  static const std::array<KnownType, 4> types{{
+      {static_cast<std::uint64_t>(imunoise::imu_sample_t::getHash()), "imunoise.imu_sample_t"},
+      {static_cast<std::uint64_t>(imunoise::noise_model_t::getHash()), "imunoise.noise_model_t"},
+      {static_cast<std::uint64_t>(imunoise::allan_curve_t::getHash()), "imunoise.allan_curve_t"},
+      {static_cast<std::uint64_t>(imunoise::drift_prediction_t::getHash()),
+       "imunoise.drift_prediction_t"},
+  }};
+  return types;
+}
+
+std::string type_name_of(std::uint64_t fingerprint) {
+  for (const KnownType& t : known_types()) {
+    if (t.fingerprint == fingerprint) return t.name;
+  }
+  return {};
+}
+
+/// Sequential reader of events. Every length is checked against the file size before any
+/// allocation, so a corrupt length cannot make it allocate more than the file holds.
+class EventScanner {
+ public:
+  explicit EventScanner(std::string path) : path_(std::move(path)) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path_, ec);
+    if (ec || !std::filesystem::exists(status)) fail_plain("cannot open: no such file");
+    if (!std::filesystem::is_regular_file(status)) fail_plain("cannot open: not a regular file");
+    size_ = std::filesystem::file_size(path_, ec);
+    if (ec) fail_plain("cannot read the file size: " + ec.message());
+    in_.open(path_, std::ios::binary);
+    if (!in_) fail_plain("cannot open for reading");
+  }
+
+  const std::string& path() const { return path_; }
+
+  /// Reads the next event; false at the end of the file (after a complete event).
+  bool next() {
+    if (pos_ == size_) return false;
+    offset_ = pos_;
+    const std::uint64_t remaining = size_ - pos_;
+    std::array<unsigned char, kHeaderBytes> header{};
+    const std::uint64_t got = std::min(remaining, kHeaderBytes);
+    read_exact(header.data(), got);
+    if (got >= 4) {
+      const std::uint32_t sync = load_be32(header.data());
+      if (sync != kSyncWord) {
+        fail("bad sync word " + hex32(sync) + " (expected " + hex32(kSyncWord) + ")" +
+             (offset_ == 0 ? ": not an LCM log file" : ": the log is corrupt here"));
+      }
+    }
+    if (got < kHeaderBytes) {
+      fail("truncated event: the file ends " + std::to_string(got) + " bytes into the " +
+           std::to_string(kHeaderBytes) + "-byte event header");
+    }
+    event_number_ = static_cast<std::int64_t>(load_be64(header.data() + 4));
+    const std::uint32_t channel_length = load_be32(header.data() + 20);
+    const std::uint32_t data_length = load_be32(header.data() + 24);
+    if (channel_length == 0 || channel_length > kMaxChannelLength) {
+      fail("bad channel length " + std::to_string(channel_length) + " (expected 1 to " +
+           std::to_string(kMaxChannelLength) + ")");
+    }
+    if (data_length > size_) {
+      fail("data length " + std::to_string(data_length) + " is beyond the file size (" +
+           std::to_string(size_) + " bytes)");
+    }
+    const std::uint64_t body = std::uint64_t{channel_length} + data_length;
+    if (body > remaining - kHeaderBytes) {
+      fail("truncated event: channel and data need " + std::to_string(body) +
+           " bytes after the header, the file has " + std::to_string(remaining - kHeaderBytes));
+    }
+    channel_.resize(channel_length);
+    read_exact(reinterpret_cast<unsigned char*>(channel_.data()), channel_length);
+    data_.resize(data_length);
+    read_exact(data_.data(), data_length);
+    pos_ += kHeaderBytes + body;
+    return true;
+  }
+
+  std::uint64_t offset() const { return offset_; }
+  std::int64_t event_number() const { return event_number_; }
+  const std::string& channel() const { return channel_; }
+  std::span<const unsigned char> data() const { return data_; }
+  /// The fingerprint of the current event's message, if it has 8 bytes.
+  std::optional<std::uint64_t> fingerprint() const {
+    if (data_.size() < kFingerprintBytes) return std::nullopt;
+    return load_be64(data_.data());
+  }
+
+  /// InputError "PATH: byte offset N: problem" at the current event.
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw InputError(
+        located_message(path_, 0, 0, "byte offset " + std::to_string(offset_) + ": " + problem));
+  }
+  [[noreturn]] void fail_plain(const std::string& problem) const {
+    throw InputError(located_message(path_, 0, 0, problem));
+  }
+
+ private:
+  void read_exact(unsigned char* out, std::uint64_t count) {
+    if (count == 0) return;
+    in_.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(count));
+    if (static_cast<std::uint64_t>(in_.gcount()) != count) {
+      fail("read error: the file ended early (was it changed while being read?)");
+    }
+  }
+
+  std::string path_;
+  std::ifstream in_;
+  std::uint64_t size_ = 0;
+  std::uint64_t pos_ = 0;
+  std::uint64_t offset_ = 0;
+  std::int64_t event_number_ = 0;
+  std::string channel_;
+  std::vector<unsigned char> data_;
+};
+
+/// Channel statistics gathered while scanning.
+class ChannelTally {
+ public:
+  void add(const std::string& name, std::optional<std::uint64_t> fingerprint) {
+    // Consecutive events are mostly on the same channel: try the last one first.
+    auto it = last_ < channels_.size() && channels_[last_].name == name
+                  ? channels_.begin() + static_cast<std::ptrdiff_t>(last_)
+                  : std::find_if(channels_.begin(), channels_.end(),
+                                 [&](const LcmLogChannel& c) { return c.name == name; });
+    if (it == channels_.end()) {
+      LcmLogChannel c;
+      c.name = name;
+      c.fingerprint = fingerprint;
+      if (fingerprint) c.type_name = type_name_of(*fingerprint);
+      channels_.push_back(std::move(c));
+      it = channels_.end() - 1;
+    } else if (it->fingerprint != fingerprint) {
+      ++it->other_fingerprint_count;
+    }
+    ++it->event_count;
+    last_ = static_cast<std::size_t>(it - channels_.begin());
+  }
+
+  std::vector<LcmLogChannel> take() { return std::move(channels_); }
+
+ private:
+  std::vector<LcmLogChannel> channels_;  // few channels: a linear search is fine
+  std::size_t last_ = 0;
+};
+
+/// "'IMU' (imunoise.imu_sample_t, 100 events), 'X' (unknown type, fingerprint 0x…, 2 events)"
+std::string describe_channels(const std::vector<LcmLogChannel>& channels) {
+  if (channels.empty()) return "the log holds no events";
+  std::string out = "the log holds ";
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    const LcmLogChannel& c = channels[i];
+    if (i > 0) out.append(", ");
+    out.append(printable(c.name)).append(" (");
+    if (!c.type_name.empty()) {
+      out.append(c.type_name);
+    } else if (c.fingerprint) {
+      out.append("unknown type, fingerprint ").append(lcm_fingerprint_text(*c.fingerprint));
+    } else {
+      out.append("unknown type, message shorter than a fingerprint");
+    }
+    out.append(", ")
+        .append(std::to_string(c.event_count))
+        .append(c.event_count == 1 ? " event)" : " events)");
+  }
+  return out;
+}
+
+/// Time since the first stamp [s], exact in integer µs unless the difference overflows.
+double relative_seconds(std::int64_t utime, std::int64_t first) {
+  std::int64_t diff = 0;
+  if (__builtin_sub_overflow(utime, first, &diff)) {
+    return (static_cast<double>(utime) - static_cast<double>(first)) * 1e-6;
+  }
+  return static_cast<double>(diff) * 1e-6;
+}
+
+constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
+
+/// The first non-finite value of a used field, as "field[i] (value)", or empty.
+std::string first_non_finite(const imunoise::imu_sample_t& m, std::int64_t* count) {
+  std::string first;
+  const auto check = [&](const double* values, int n, const char* field) {
+    for (int i = 0; i < n; ++i) {
+      if (std::isfinite(values[i])) continue;
+      ++*count;
+      if (first.empty()) {
+        // Built with append() only: GCC 12 raises a false -Wrestrict on `"[" + to_string(…)`.
+        first.append(field);
+        if (n > 1) first.append("[").append(std::to_string(i)).append("]");
+        first.append(" (")
+            .append(std::isnan(values[i]) ? "NaN" : (values[i] > 0 ? "+Inf" : "-Inf"))
+            .append(")");
+      }
+    }
+  };
+  if (m.has_increments) {
+    check(m.delta_angle_rad, 3, "delta_angle_rad");
+    check(m.delta_velocity_m_per_s, 3, "delta_velocity_m_per_s");
+  } else {
+    check(m.angular_rate_rad_per_s, 3, "angular_rate_rad_per_s");
+    check(m.specific_force_m_per_s2, 3, "specific_force_m_per_s2");
+  }
+  if (m.has_temperature) check(&m.temperature_degc, 1, "temperature_degc");
+  return first;
+}
+
+}  // namespace
+
+std::string lcm_fingerprint_text(std::uint64_t fingerprint) {
+  return hex32(static_cast<std::uint32_t>(fingerprint >> 32)) +
+         hex32(static_cast<std::uint32_t>(fingerprint)).substr(2);
+}
+
+std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path) {
+  EventScanner scanner(path);
+  ChannelTally tally;
+  while (scanner.next()) tally.add(scanner.channel(), scanner.fingerprint());
+  return tally.take();
+}
+
+Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
+                           const LcmReadOptions& options) {
+  using imunoise::imu_sample_t;
+  const auto expected = static_cast<std::uint64_t>(imu_sample_t::getHash());
+  const std::string expected_name = "imunoise.imu_sample_t";
+
+  EventScanner scanner(path);
+  ChannelTally tally;
+  std::vector<std::int64_t> utime;
+  std::array<std::vector<double>, 6> values;  // gyro x y z, accel x y z (rates or increments)
+  std::vector<double> temperature;
+  bool all_temperature = true;
+  std::optional<bool> increments;
+  std::int64_t non_finite_dropped = 0, rows_dropped = 0;
+
+  while (scanner.next()) {
+    const auto fingerprint = scanner.fingerprint();
+    tally.add(scanner.channel(), fingerprint);
+    if (scanner.channel() != channel) continue;
+    if (fingerprint != expected) {
+      std::string found;
+      if (fingerprint) {
+        found = "fingerprint " + lcm_fingerprint_text(*fingerprint);
+        const std::string name = type_name_of(*fingerprint);
+        found += name.empty() ? " (not one of imunoise's types)" : " (" + name + ")";
+      } else {
+        found = "a " + std::to_string(scanner.data().size()) +
+                "-byte message, too short for a fingerprint";
+      }
+      scanner.fail("wrong type on channel " + printable(channel) + ": expected " + expected_name +
+                   " (fingerprint " + lcm_fingerprint_text(expected) + "), found " + found);
+    }
+    const auto data = scanner.data();
+    if (data.size() > static_cast<std::size_t>(INT_MAX)) {
+      scanner.fail("message of " + std::to_string(data.size()) + " bytes is too large");
+    }
+    imu_sample_t m{};
+    const int decoded = m.decode(data.data(), 0, static_cast<int>(data.size()));
+    if (decoded < 0) {
+      scanner.fail("the " + std::to_string(data.size()) + "-byte message on channel " +
+                   printable(channel) + " does not decode as " + expected_name);
+    }
+    if (static_cast<std::size_t>(decoded) != data.size()) {
+      scanner.fail(std::to_string(data.size() - static_cast<std::size_t>(decoded)) +
+                   " trailing bytes after the " + expected_name + " message");
+    }
+    const bool has_increments = m.has_increments != 0;
+    if (!increments) {
+      increments = has_increments;
+    } else if (*increments != has_increments) {
+      scanner.fail(std::string("has_increments is ") + (has_increments ? "true" : "false") +
+                   " here but " + (*increments ? "true" : "false") +
+                   " in the first message on channel " + printable(channel) +
+                   " (a log must use one or the other)");
+    }
+    std::int64_t bad = 0;
+    const std::string bad_field = first_non_finite(m, &bad);
+    if (!bad_field.empty()) {
+      if (!options.drop_non_finite) {
+        scanner.fail("non-finite value in " + bad_field + " on channel " + printable(channel) +
+                     " (event number " + std::to_string(scanner.event_number()) + ")");
+      }
+      non_finite_dropped += bad;
+      ++rows_dropped;
+      continue;
+    }
+    utime.push_back(m.utime);
+    const double* gyro = has_increments ? m.delta_angle_rad : m.angular_rate_rad_per_s;
+    const double* accel = has_increments ? m.delta_velocity_m_per_s : m.specific_force_m_per_s2;
+    for (std::size_t a = 0; a < 3; ++a) {
+      values[a].push_back(gyro[a]);
+      values[3 + a].push_back(accel[a]);
+    }
+    all_temperature = all_temperature && m.has_temperature != 0;
+    if (all_temperature) temperature.push_back(m.temperature_degc);
+  }
+
+  const auto listed = tally.take();
+  const bool found = std::any_of(listed.begin(), listed.end(),
+                                 [&](const LcmLogChannel& c) { return c.name == channel; });
+  if (!found) {
+    throw InputError(located_message(
+        path, 0, 0, "channel " + printable(channel) + " not found; " + describe_channels(listed)));
+  }
+
+  const std::size_t n = utime.size();
+  require_min_samples(path, n, 2, "a sample rate from time stamps");
+
+  Recording rec;
+  rec.source_path = path;
+  rec.start_time_s = static_cast<double>(utime.front()) * 1e-6;
+  rec.time_s.resize(n);
+  for (std::size_t i = 0; i < n; ++i) rec.time_s[i] = relative_seconds(utime[i], utime.front());
+  const SamplingOptions sampling;
+  const TimingReport timing = analyze_timing(rec.time_s, sampling);
+  if (!(timing.median_interval_s > 0.0)) {
+    throw InputError(
+        located_message(path, 0, 0,
+                        "cannot estimate the sample rate: the utime stamps on channel " +
+                            printable(channel) + " never increase"));
+  }
+  rec.sample_period_s = timing.median_interval_s;
+
+  const bool inc = increments.value_or(false);
+  const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
+                               std::string source_column, std::vector<double> v, bool from_inc) {
+    Channel ch;
+    ch.name = std::move(name);
+    ch.unit = std::move(unit);
+    ch.source_unit = std::move(source_unit);
+    ch.source_column = channel + "." + source_column;
+    ch.from_increments = from_inc;
+    ch.values = std::move(v);
+    if (from_inc) {
+      for (double& x : ch.values) x /= rec.sample_period_s;  // as csv_reader: increment / Δt
+    }
+    rec.channels.push_back(std::move(ch));
+  };
+  for (std::size_t a = 0; a < 3; ++a) {
+    const std::string index = "[" + std::to_string(a) + "]";
+    add_channel(std::string("gyro_") + kAxes[a], "rad/s", inc ? "rad" : "rad/s",
+                (inc ? "delta_angle_rad" : "angular_rate_rad_per_s") + index, std::move(values[a]),
+                inc);
+  }
+  for (std::size_t a = 0; a < 3; ++a) {
+    const std::string index = "[" + std::to_string(a) + "]";
+    add_channel(std::string("accel_") + kAxes[a], "m/s^2", inc ? "m/s" : "m/s^2",
+                (inc ? "delta_velocity_m_per_s" : "specific_force_m_per_s2") + index,
+                std::move(values[3 + a]), inc);
+  }
+  if (all_temperature) {
+    // An extra channel, as a CSV extra column: unit "" (as in the source), here °C.
+    add_channel("temperature", "", "degC", "temperature_degc", std::move(temperature), false);
+  }
+
+  rec.report.samples = static_cast<std::int64_t>(n);
+  rec.report.timing = timing;
+  rec.report.non_finite_dropped = non_finite_dropped;
+  rec.report.rows_dropped = rows_dropped;
+  for (const Channel& ch : rec.channels) {
+    const ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
+    rec.report.channels.push_back(analyze_channel(samples, sampling));
+  }
+  return rec;
+}
+
+}  // namespace imunoise::io
