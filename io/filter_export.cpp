@@ -3,7 +3,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <sstream>
+#include <utility>
 
 #include "common/errors.h"
 #include "common/number_text.h"
@@ -152,6 +154,34 @@ RwOnly rw_only(const FilterParameters& p, Config& c, ExportFormat format, bool c
           a.rw_only_random_walk};
 }
 
+/// One member of RwOnly: gyro or accel, white noise or random walk.
+enum class Slot { n_g, n_a, k_g, k_a };
+
+/// The white + RW pair as the per-sample σ of a discrete filter at RATE (N·√rate, K·√rate),
+/// with one header conversion line per key in the order given (VINS, PX4).
+RwOnly per_sample(Config& c, const RwOnly& v, double rate,
+                  std::initializer_list<std::pair<const char*, Slot>> keys) {
+  const double s = std::sqrt(rate);
+  const RwOnly d{v.n_g * s, v.k_g * s, v.n_a * s, v.k_a * s};
+  for (const auto& [key, slot] : keys) {
+    switch (slot) {
+      case Slot::n_g:
+        c.conversion(key, "N_g*sqrt(rate)", d.n_g, "rad/s");
+        break;
+      case Slot::n_a:
+        c.conversion(key, "N_a*sqrt(rate)", d.n_a, "m/s^2");
+        break;
+      case Slot::k_g:
+        c.conversion(key, "K_g*sqrt(rate)", d.k_g, "rad/s^2");
+        break;
+      case Slot::k_a:
+        c.conversion(key, "K_a*sqrt(rate)", d.k_a, "m/s^3");
+        break;
+    }
+  }
+  return d;
+}
+
 std::string kalibr_like(const models::NoiseModel& model, const ExportRequest& request,
                         const FilterParameters& p, double rate, bool openvins) {
   Config c("#", model, request, rate);
@@ -224,23 +254,21 @@ std::string vins(const models::NoiseModel& model, const ExportRequest& request,
   Config c("#", model, request, rate);
   c.rules(p);
   const auto v = rw_only(p, c, request.format, request.parameters.conservative);
-  const double s = std::sqrt(rate);
   c.line(
       "VINS uses these as discrete per-sample sigmas (integration_base.h multiplies the "
       "noise by dt): acc_n = N*sqrt(rate), acc_w = K*sqrt(rate)");
-  c.conversion("acc_n", "N_a*sqrt(rate)", v.n_a * s, "m/s^2");
-  c.conversion("gyr_n", "N_g*sqrt(rate)", v.n_g * s, "rad/s");
-  c.conversion("acc_w", "K_a*sqrt(rate)", v.k_a * s, "m/s^3");
-  c.conversion("gyr_w", "K_g*sqrt(rate)", v.k_g * s, "rad/s^2");
+  const auto d = per_sample(
+      c, v, rate,
+      {{"acc_n", Slot::n_a}, {"gyr_n", Slot::n_g}, {"acc_w", Slot::k_a}, {"gyr_w", Slot::k_g}});
   c.line(
       "g_norm is standard gravity; put your local gravity there. VINS-Fusion reads these "
       "keys only with imu: 1, and a missing key silently becomes 0");
   auto& b = c.body();
   b << "\n";
-  b << "acc_n: " << real(v.n_a * s) << "  # accelerometer measurement noise sigma [m/s^2]\n";
-  b << "gyr_n: " << real(v.n_g * s) << "  # gyroscope measurement noise sigma [rad/s]\n";
-  b << "acc_w: " << real(v.k_a * s) << "  # accelerometer bias random walk sigma [m/s^3]\n";
-  b << "gyr_w: " << real(v.k_g * s) << "  # gyroscope bias random walk sigma [rad/s^2]\n";
+  b << "acc_n: " << real(d.n_a) << "  # accelerometer measurement noise sigma [m/s^2]\n";
+  b << "gyr_n: " << real(d.n_g) << "  # gyroscope measurement noise sigma [rad/s]\n";
+  b << "acc_w: " << real(d.k_a) << "  # accelerometer bias random walk sigma [m/s^3]\n";
+  b << "gyr_w: " << real(d.k_g) << "  # gyroscope bias random walk sigma [rad/s^2]\n";
   b << "g_norm: " << real(units::kStandardGravity) << "  # [m/s^2]\n";
   return c.text("%YAML:1.0");
 }
@@ -454,24 +482,23 @@ std::string px4(const models::NoiseModel& model, const ExportRequest& request,
   Config c("#", model, request, rate);
   c.rules(p);
   const auto v = rw_only(p, c, request.format, request.parameters.conservative);
-  const double s = std::sqrt(rate);
   c.line(
       "EKF2 applies these per filter update of fixed period dt (delta-angle variance = "
       "(dt*EKF2_GYR_NOISE)^2, bias step std = dt^2*EKF2_GYR_B_NOISE): noise = N*sqrt(rate), "
       "bias noise = K*sqrt(rate), rate = the filter rate");
-  c.conversion("EKF2_GYR_NOISE", "N_g*sqrt(rate)", v.n_g * s, "rad/s");
-  c.conversion("EKF2_ACC_NOISE", "N_a*sqrt(rate)", v.n_a * s, "m/s^2");
-  c.conversion("EKF2_GYR_B_NOISE", "K_g*sqrt(rate)", v.k_g * s, "rad/s^2");
-  c.conversion("EKF2_ACC_B_NOISE", "K_a*sqrt(rate)", v.k_a * s, "m/s^3");
+  const auto d = per_sample(c, v, rate,
+                            {{"EKF2_GYR_NOISE", Slot::n_g},
+                             {"EKF2_ACC_NOISE", Slot::n_a},
+                             {"EKF2_GYR_B_NOISE", Slot::k_g},
+                             {"EKF2_ACC_B_NOISE", Slot::k_a}});
   struct Bound {
     const char* name;
     double value, min, max;
   };
   // Allowed ranges of PX4-Autopilot's ekf2 parameter definitions (module.yaml).
-  for (const Bound& bound : {Bound{"EKF2_GYR_NOISE", v.n_g * s, 1e-4, 0.1},
-                             Bound{"EKF2_ACC_NOISE", v.n_a * s, 0.01, 1.0},
-                             Bound{"EKF2_GYR_B_NOISE", v.k_g * s, 0.0, 0.01},
-                             Bound{"EKF2_ACC_B_NOISE", v.k_a * s, 0.0, 0.01}})
+  for (const Bound& bound :
+       {Bound{"EKF2_GYR_NOISE", d.n_g, 1e-4, 0.1}, Bound{"EKF2_ACC_NOISE", d.n_a, 0.01, 1.0},
+        Bound{"EKF2_GYR_B_NOISE", d.k_g, 0.0, 0.01}, Bound{"EKF2_ACC_B_NOISE", d.k_a, 0.0, 0.01}})
     if (bound.value < bound.min || bound.value > bound.max)
       c.line(std::string("WARNING: ") + bound.name + " = " + real(bound.value) +
              " is outside PX4's allowed range [" + real(bound.min) + ", " + real(bound.max) +
@@ -485,10 +512,10 @@ std::string px4(const models::NoiseModel& model, const ExportRequest& request,
     std::snprintf(buffer, sizeof buffer, "1\t1\t%s\t%.9g\t9\n", name, value);
     b << buffer;
   };
-  param("EKF2_ACC_B_NOISE", v.k_a * s);
-  param("EKF2_ACC_NOISE", v.n_a * s);
-  param("EKF2_GYR_B_NOISE", v.k_g * s);
-  param("EKF2_GYR_NOISE", v.n_g * s);
+  param("EKF2_ACC_B_NOISE", d.k_a);
+  param("EKF2_ACC_NOISE", d.n_a);
+  param("EKF2_GYR_B_NOISE", d.k_g);
+  param("EKF2_GYR_NOISE", d.n_g);
   return c.text();
 }
 
