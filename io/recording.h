@@ -4,6 +4,7 @@
 /// Readers: io/csv_reader.h (`read_recording`).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -13,6 +14,10 @@
 #include "io/sampling_report.h"
 
 namespace imunoise::io {
+
+/// The six standard channel names of a recording, gyro then accelerometer, x, y, z (body FRD).
+inline constexpr std::array<const char*, 6> kImuChannelNames{"gyro_x",  "gyro_y",  "gyro_z",
+                                                             "accel_x", "accel_y", "accel_z"};
 
 /// One named channel, in SI.
 struct Channel {

@@ -42,8 +42,7 @@ namespace imunoise::tools {
 
 namespace {
 
-constexpr std::array<const char*, 6> kChannelNames{"gyro_x",  "gyro_y",  "gyro_z",
-                                                   "accel_x", "accel_y", "accel_z"};
+using io::kImuChannelNames;
 
 struct AnalyzeArgs {
   std::string file;
@@ -273,8 +272,8 @@ void print_summary(const models::NoiseModel& model,
         if (slope > 0.0) std::cout << "   ieee952 " << fixed(slope * unit.factor, 4);
         if (truth) {
           const std::size_t channel = static_cast<std::size_t>(
-              std::find(kChannelNames.begin(), kChannelNames.end(), axis.name) -
-              kChannelNames.begin());
+              std::find(kImuChannelNames.begin(), kImuChannelNames.end(), axis.name) -
+              kImuChannelNames.begin());
           if (channel < 6) {
             const double true_value = models::coefficient((*truth)[channel], term);
             const bool inside = true_value >= e.ci_low && true_value <= e.ci_high;
@@ -322,8 +321,8 @@ void run_analyze(const AnalyzeArgs& args) {
   const io::Recording recording = io::read_recording(args.file, config);
   const double tau0_s = recording.sample_period_s;
   std::vector<std::pair<std::size_t, const io::Channel*>> channels;
-  for (std::size_t c = 0; c < kChannelNames.size(); ++c) {
-    if (const io::Channel* channel = recording.find_channel(kChannelNames[c])) {
+  for (std::size_t c = 0; c < kImuChannelNames.size(); ++c) {
+    if (const io::Channel* channel = recording.find_channel(kImuChannelNames[c])) {
       channels.emplace_back(c, channel);
     }
   }

@@ -21,6 +21,7 @@
 #include "ins/noise_from_model.h"
 #include "io/atomic_output.h"
 #include "io/noise_model_yaml.h"
+#include "io/recording.h"
 #include "models/filter_parameters.h"
 #include "models/state_space.h"
 #include "tools/commands.h"
@@ -174,17 +175,16 @@ void run_discretize(const DiscretizeArgs& a) {
       throw InputError(a.model_path + ": --states " + a.states + ": " + e.what());
     }
     const auto bias = kBiasModels.at(a.bias);
-    const char* const xyz[] = {"x", "y", "z"};
     for (int i = 0; i < 3; ++i) {
       noise.gyro[i].scale_factor_sigma = a.gyro_scale_sigma_ppm * 1e-6;
       noise.accel[i].scale_factor_sigma = a.accel_scale_sigma_ppm * 1e-6;
-      note_dropped_terms(noise.gyro[i], bias, std::string("gyro_") + xyz[i], notes);
-      note_dropped_terms(noise.accel[i], bias, std::string("accel_") + xyz[i], notes);
+      note_dropped_terms(noise.gyro[i], bias, io::kImuChannelNames[i], notes);
+      note_dropped_terms(noise.accel[i], bias, io::kImuChannelNames[3 + i], notes);
     }
     for (int i = 0; i < 3; ++i)
-      white.push_back({std::string("gyro_") + xyz[i], noise.gyro[i].white_noise, true});
+      white.push_back({io::kImuChannelNames[i], noise.gyro[i].white_noise, true});
     for (int i = 0; i < 3; ++i)
-      white.push_back({std::string("accel_") + xyz[i], noise.accel[i].white_noise, false});
+      white.push_back({io::kImuChannelNames[3 + i], noise.accel[i].white_noise, false});
     ins::ErrorStateOptions o;
     o.scale_factors = a.states == "21";
     o.bias = bias;

@@ -31,9 +31,6 @@
 namespace imunoise::tools {
 namespace {
 
-constexpr std::array<const char*, 6> kChannels{"gyro_x",  "gyro_y",  "gyro_z",
-                                               "accel_x", "accel_y", "accel_z"};
-
 struct DriftArgs {
   std::string file;
   io::InputConfig flags;
@@ -79,7 +76,7 @@ void run_drift(DriftArgs a) {
   o.heading_sigma_rad = a.heading_sigma_deg * units::kDeg;
   o.align_s = parse_duration_s(a.align, "--align");
   o.navigation_s = parse_duration_s(a.segment, "--segment");
-  o.warmup_s = a.warmup == "0" || a.warmup == "0s" ? 0.0 : parse_duration_s(a.warmup, "--warmup");
+  o.warmup_s = parse_duration_s(a.warmup, "--warmup", /*allow_zero=*/true);
   o.output_step_s = parse_duration_s(a.output_step, "--output-step");
   o.report_times_s.clear();
   for (double t : a.report_times_s)
@@ -91,9 +88,9 @@ void run_drift(DriftArgs a) {
   pipeline::ImuSeries series;
   series.sample_period_s = recording.sample_period_s;
   for (int c = 0; c < 6; ++c) {
-    const io::Channel* channel = recording.find_channel(kChannels[c]);
+    const io::Channel* channel = recording.find_channel(io::kImuChannelNames[c]);
     if (channel == nullptr)
-      throw InputError(a.file + ": drift needs all six channels; " + kChannels[c] +
+      throw InputError(a.file + ": drift needs all six channels; " + io::kImuChannelNames[c] +
                        " is missing (map it with --config or the column flags)");
     series.channels[c] = channel->values;
   }
@@ -114,9 +111,9 @@ void run_drift(DriftArgs a) {
   if (a.monte_carlo > 0) {
     models::ImuNoiseModel simulation;
     for (int i = 0; i < 3; ++i) {
-      if (const auto* g = model.find_axis(kChannels[i]))
+      if (const auto* g = model.find_axis(io::kImuChannelNames[i]))
         simulation.gyro[i] = models::channel_model_from(g->coefficients());
-      if (const auto* f = model.find_axis(kChannels[3 + i]))
+      if (const auto* f = model.find_axis(io::kImuChannelNames[3 + i]))
         simulation.accel[i] = models::channel_model_from(f->coefficients());
     }
     models::FlickerBand band;

@@ -10,7 +10,7 @@
 
 namespace imunoise::tools {
 
-double parse_duration_s(const std::string& text, const std::string& flag) {
+double parse_duration_s(const std::string& text, const std::string& flag, bool allow_zero) {
   double value = 0.0;
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
@@ -23,11 +23,10 @@ double parse_duration_s(const std::string& text, const std::string& flag) {
   } else if (unit == "h") {
     scale = units::kHour;
   }
-  if (ec != std::errc() || scale == 0.0 || !std::isfinite(value) || !(value > 0.0)) {
-    throw InputError(flag +
-                     ": expected a positive number with unit s, min or h (e.g. 2h, 30min, "
-                     "600s), got '" +
-                     text + "'");
+  const bool in_range = allow_zero ? value >= 0.0 : value > 0.0;
+  if (ec != std::errc() || scale == 0.0 || !std::isfinite(value) || !in_range) {
+    throw InputError(flag + ": expected a " + (allow_zero ? "non-negative" : "positive") +
+                     " number with unit s, min or h (e.g. 2h, 30min, 600s), got '" + text + "'");
   }
   return value * scale;
 }

@@ -6,8 +6,8 @@
 
 namespace imunoise::tools {
 
-/// Seconds in TEXT ("2h", "30min", "600s", "600"), > 0 and finite.
+/// Seconds in TEXT ("2h", "30min", "600s", "600"), finite and > 0 (≥ 0 with ALLOW_ZERO).
 /// @throws InputError "FLAG: expected a positive number with unit s, min or h …, got 'TEXT'".
-double parse_duration_s(const std::string& text, const std::string& flag);
+double parse_duration_s(const std::string& text, const std::string& flag, bool allow_zero = false);
 
 }  // namespace imunoise::tools
