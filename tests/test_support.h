@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.h"
+
 namespace imunoise::test {
 
 /// Folder holding NIST / Stable32 reference data: $IMUNOISE_REFERENCE_DATA, else
@@ -64,6 +66,18 @@ void expect_throw_containing(F&& f, const std::string& fragment) {
   } catch (const E& e) {
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
   }
+}
+
+/// The what() of the InputError thrown by F; a test failure (and "") when none is thrown.
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return {};
 }
 
 /// Writes TEXT to PATH (test fixtures).

@@ -28,17 +28,7 @@ std::string fixture(const std::string& name, const std::string& text) {
   return path.string();
 }
 
-/// The what() of the InputError thrown by `f` (fails the test if none is thrown).
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
+using test::error_of;
 
 Series series(const std::string& path, const std::string& column = "", bool drop = false) {
   SeriesReadOptions options;

@@ -123,16 +123,7 @@ void put_be32(Bytes& bytes, std::size_t at, std::uint32_t v) {
   for (int k = 0; k < 4; ++k) bytes.at(at + k) = static_cast<unsigned char>(v >> (24 - 8 * k));
 }
 
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return {};
-}
+using test::error_of;
 
 std::string hash_text(std::int64_t hash) {
   return lcm_fingerprint_text(static_cast<std::uint64_t>(hash));

@@ -29,16 +29,7 @@ std::string fixture(const std::string& name, const std::string& text) {
   return path.string();
 }
 
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
+using test::error_of;
 
 const Channel& channel(const Recording& rec, const std::string& name) {
   const Channel* c = rec.find_channel(name);
