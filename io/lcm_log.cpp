@@ -19,7 +19,8 @@
 #include <utility>
 
 #include "common/errors.h"
-#include "io/sampling_report.h"
+#include "io/imu_samples.h"
+#include "io/lcm_messages.h"
 
 namespace imunoise::io {
 namespace {
@@ -238,43 +239,45 @@ std::string describe_channels(const std::vector<LcmLogChannel>& channels) {
   return out;
 }
 
-/// Time since the first stamp [s], exact in integer µs unless the difference overflows.
-double relative_seconds(std::int64_t utime, std::int64_t first) {
-  std::int64_t diff = 0;
-  if (__builtin_sub_overflow(utime, first, &diff)) {
-    return (static_cast<double>(utime) - static_cast<double>(first)) * 1e-6;
-  }
-  return static_cast<double>(diff) * 1e-6;
-}
-
-constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
-
-/// The first non-finite value of a used field, as "field[i] (value)", or empty.
-std::string first_non_finite(const imunoise::imu_sample_t& m, std::int64_t* count) {
-  std::string first;
-  const auto check = [&](const double* values, int n, const char* field) {
-    for (int i = 0; i < n; ++i) {
-      if (std::isfinite(values[i])) continue;
-      ++*count;
-      if (first.empty()) {
-        // Built with append() only: GCC 12 raises a false -Wrestrict on `"[" + to_string(…)`.
-        first.append(field);
-        if (n > 1) first.append("[").append(std::to_string(i)).append("]");
-        first.append(" (")
-            .append(std::isnan(values[i]) ? "NaN" : (values[i] > 0 ? "+Inf" : "-Inf"))
-            .append(")");
+/// read_lcm_imu_log for a user's own message type (options.user_type): the same scan, the
+/// messages decoded by LcmUserImuDecoder.
+Recording read_user_type_log(const std::string& path, const std::string& channel,
+                             const LcmReadOptions& options) {
+  LcmUserImuDecoder decoder(*options.user_type);
+  const std::string expected = decoder.type_name() + " (fingerprint " +
+                               lcm_fingerprint_text(decoder.fingerprint()) + ", from " +
+                               decoder.definition_path() + ")";
+  EventScanner scanner(path);
+  ChannelTally tally;
+  ImuSampleColumns samples = decoder.make_columns();
+  std::string error;
+  while (scanner.next()) {
+    const auto fingerprint = scanner.fingerprint();
+    tally.add(scanner.channel(), fingerprint);
+    if (scanner.channel() != channel) continue;
+    if (fingerprint != decoder.fingerprint()) {
+      std::string found = "a " + std::to_string(scanner.data().size()) +
+                          "-byte message, too short for a fingerprint";
+      if (fingerprint) {
+        const std::string name = type_name_of(*fingerprint);
+        found = "fingerprint " + lcm_fingerprint_text(*fingerprint) +
+                (name.empty() ? "" : " (" + name + ")");
       }
+      scanner.fail("wrong type on channel " + printable(channel) + ": expected " + expected +
+                   ", found " + found);
     }
-  };
-  if (m.has_increments) {
-    check(m.delta_angle_rad, 3, "delta_angle_rad");
-    check(m.delta_velocity_m_per_s, 3, "delta_velocity_m_per_s");
-  } else {
-    check(m.angular_rate_rad_per_s, 3, "angular_rate_rad_per_s");
-    check(m.specific_force_m_per_s2, 3, "specific_force_m_per_s2");
+    if (!decoder.append(scanner.data(), options.drop_non_finite, samples, error)) {
+      scanner.fail(error + " (channel " + printable(channel) + ", event number " +
+                   std::to_string(scanner.event_number()) + ")");
+    }
   }
-  if (m.has_temperature) check(&m.temperature_degc, 1, "temperature_degc");
-  return first;
+  const auto listed = tally.take();
+  if (std::none_of(listed.begin(), listed.end(),
+                   [&](const LcmLogChannel& c) { return c.name == channel; })) {
+    throw InputError(located_message(
+        path, 0, 0, "channel " + printable(channel) + " not found; " + describe_channels(listed)));
+  }
+  return recording_from_imu_samples(std::move(samples), path, channel);
 }
 
 }  // namespace
@@ -293,19 +296,15 @@ std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path) {
 
 Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
                            const LcmReadOptions& options) {
+  if (options.user_type) return read_user_type_log(path, channel, options);
   using imunoise::imu_sample_t;
   const auto expected = static_cast<std::uint64_t>(imu_sample_t::getHash());
   const std::string expected_name = "imunoise.imu_sample_t";
 
   EventScanner scanner(path);
   ChannelTally tally;
-  std::vector<std::int64_t> utime;
-  std::array<std::vector<double>, 6> values;  // gyro x y z, accel x y z (rates or increments)
-  std::vector<double> temperature;
-  bool all_temperature = true;
+  ImuSampleColumns samples;
   std::optional<bool> increments;
-  std::int64_t non_finite_dropped = 0, rows_dropped = 0;
-
   while (scanner.next()) {
     const auto fingerprint = scanner.fingerprint();
     tally.add(scanner.channel(), fingerprint);
@@ -347,25 +346,17 @@ Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
                    " (a log must use one or the other)");
     }
     std::int64_t bad = 0;
-    const std::string bad_field = first_non_finite(m, &bad);
+    const std::string bad_field = first_non_finite_field(m, &bad);
     if (!bad_field.empty()) {
       if (!options.drop_non_finite) {
         scanner.fail("non-finite value in " + bad_field + " on channel " + printable(channel) +
                      " (event number " + std::to_string(scanner.event_number()) + ")");
       }
-      non_finite_dropped += bad;
-      ++rows_dropped;
+      samples.non_finite_dropped += bad;
+      ++samples.rows_dropped;
       continue;
     }
-    utime.push_back(m.utime);
-    const double* gyro = has_increments ? m.delta_angle_rad : m.angular_rate_rad_per_s;
-    const double* accel = has_increments ? m.delta_velocity_m_per_s : m.specific_force_m_per_s2;
-    for (std::size_t a = 0; a < 3; ++a) {
-      values[a].push_back(gyro[a]);
-      values[3 + a].push_back(accel[a]);
-    }
-    all_temperature = all_temperature && m.has_temperature != 0;
-    if (all_temperature) temperature.push_back(m.temperature_degc);
+    append_imu_sample(m, samples);
   }
 
   const auto listed = tally.take();
@@ -376,65 +367,7 @@ Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
         path, 0, 0, "channel " + printable(channel) + " not found; " + describe_channels(listed)));
   }
 
-  const std::size_t n = utime.size();
-  require_min_samples(path, n, 2, "a sample rate from time stamps");
-
-  Recording rec;
-  rec.source_path = path;
-  rec.start_time_s = static_cast<double>(utime.front()) * 1e-6;
-  rec.time_s.resize(n);
-  for (std::size_t i = 0; i < n; ++i) rec.time_s[i] = relative_seconds(utime[i], utime.front());
-  const SamplingOptions sampling;
-  const TimingReport timing = analyze_timing(rec.time_s, sampling);
-  if (!(timing.median_interval_s > 0.0)) {
-    throw InputError(
-        located_message(path, 0, 0,
-                        "cannot estimate the sample rate: the utime stamps on channel " +
-                            printable(channel) + " never increase"));
-  }
-  rec.sample_period_s = timing.median_interval_s;
-
-  const bool inc = increments.value_or(false);
-  const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
-                               std::string source_column, std::vector<double> v, bool from_inc) {
-    Channel ch;
-    ch.name = std::move(name);
-    ch.unit = std::move(unit);
-    ch.source_unit = std::move(source_unit);
-    ch.source_column = channel + "." + source_column;
-    ch.from_increments = from_inc;
-    ch.values = std::move(v);
-    if (from_inc) {
-      for (double& x : ch.values) x /= rec.sample_period_s;  // as csv_reader: increment / Δt
-    }
-    rec.channels.push_back(std::move(ch));
-  };
-  for (std::size_t a = 0; a < 3; ++a) {
-    const std::string index = "[" + std::to_string(a) + "]";
-    add_channel(std::string("gyro_") + kAxes[a], "rad/s", inc ? "rad" : "rad/s",
-                (inc ? "delta_angle_rad" : "angular_rate_rad_per_s") + index, std::move(values[a]),
-                inc);
-  }
-  for (std::size_t a = 0; a < 3; ++a) {
-    const std::string index = "[" + std::to_string(a) + "]";
-    add_channel(std::string("accel_") + kAxes[a], "m/s^2", inc ? "m/s" : "m/s^2",
-                (inc ? "delta_velocity_m_per_s" : "specific_force_m_per_s2") + index,
-                std::move(values[3 + a]), inc);
-  }
-  if (all_temperature) {
-    // An extra channel, as a CSV extra column: unit "" (as in the source), here °C.
-    add_channel("temperature", "", "degC", "temperature_degc", std::move(temperature), false);
-  }
-
-  rec.report.samples = static_cast<std::int64_t>(n);
-  rec.report.timing = timing;
-  rec.report.non_finite_dropped = non_finite_dropped;
-  rec.report.rows_dropped = rows_dropped;
-  for (const Channel& ch : rec.channels) {
-    const ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
-    rec.report.channels.push_back(analyze_channel(samples, sampling));
-  }
-  return rec;
+  return recording_from_imu_samples(std::move(samples), path, channel);
 }
 
 }  // namespace imunoise::io

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "io/lcm_type_definition.h"
 #include "io/recording.h"
 
 namespace imunoise::io {
@@ -49,6 +50,9 @@ struct LcmReadOptions {
   /// false: a NaN/Inf in a used field is an InputError; true: the message is dropped and
   /// counted in the sampling report.
   bool drop_non_finite = false;
+  /// A user's own IMU message type (io/lcm_type_definition.h) instead of imu_sample_t: the
+  /// channel must carry that type's fingerprint; the mapped fields are scaled to SI.
+  std::optional<LcmUserType> user_type = std::nullopt;
 };
 
 /// Reads the `imunoise.imu_sample_t` messages on `channel` into a Recording in SI: channels
@@ -59,6 +63,10 @@ struct LcmReadOptions {
 /// report as for CSV input (non-monotonic stamps are reported, not fatal). Throws InputError
 /// for a malformed log, an unknown channel, a message of another type on the channel, mixed
 /// has_increments, fewer than 2 samples or stamps that never increase.
+/// With `options.user_type`: that type's messages instead, decoded by LcmUserImuDecoder (stamp
+/// and six values from the mapped fields, scaled to SI; increments divided by the period); a
+/// bad definition or mapping, another type on the channel (both fingerprints named) or a
+/// message that does not decode is an InputError.
 Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
                            const LcmReadOptions& options = {});
 

@@ -16,6 +16,7 @@
 #include "io/csv_reader.h"
 #include "io/sampling_report.h"
 #include "tools/commands.h"
+#include "tools/recording_input.h"
 
 namespace imunoise::tools {
 
@@ -34,6 +35,7 @@ struct AllanArgs {
   bool drop_non_finite = false;
   bool bias_corrected = false;
   unsigned threads = 0;
+  LcmInputFlags lcm;
   CLI::Option* tau0_option = nullptr;  // to tell a given --tau0 from the default
 };
 
@@ -55,6 +57,34 @@ const char* edf_model(analysis::DeviationType type) {
   }
 }
 
+/// One channel of an LCM log (--channel) as a series: --column names the recording channel
+/// (gyro_x … accel_z, temperature), with its time stamps.
+io::Series lcm_series(const AllanArgs& args, const io::SeriesReadOptions& read_options) {
+  io::InputConfig config;
+  config.drop_non_finite = read_options.drop_non_finite;
+  io::Recording recording = read_input_recording(args.file, config, args.lcm);
+  std::string names;
+  for (const io::Channel& c : recording.channels) names += (names.empty() ? "" : ", ") + c.name;
+  if (args.column.empty()) {
+    throw InputError(args.file + ": give --column, one of " + names);
+  }
+  const io::Channel* channel = recording.find_channel(args.column);
+  if (channel == nullptr) {
+    throw InputError(args.file + ": --column '" + args.column + "' is not a channel of the log (" +
+                     names + ")");
+  }
+  io::Series series;
+  series.source_path = args.file;
+  series.column_name = channel->source_column;
+  series.values = channel->values;
+  series.non_finite_dropped = recording.report.non_finite_dropped;
+  if (read_options.read_time) {
+    series.time_column = "utime";
+    series.time_s = std::move(recording.time_s);
+  }
+  return series;
+}
+
 void run_allan(const AllanArgs& args) {
   const auto type = analysis::parse_deviation_type(args.type);
   if (!type) throw InputError("unknown --type '" + args.type + "'");
@@ -68,7 +98,8 @@ void run_allan(const AllanArgs& args) {
   read_options.column = args.column;
   read_options.drop_non_finite = args.drop_non_finite;
   read_options.read_time = !tau0_given;
-  const io::Series series = io::read_series(args.file, read_options);
+  const io::Series series = is_lcm_log_file(args.file) ? lcm_series(args, read_options)
+                                                       : io::read_series(args.file, read_options);
 
   // τ0: --tau0, else the median interval of the file's time column, else 1 s — and say which.
   double tau0_s = args.tau0_s;
@@ -181,13 +212,17 @@ void register_allan_command(CLI::App& app) {
       "  imunoise allan gyro_x.txt --tau0 0.01 --type oadev --taus log:10\n"
       "  imunoise allan PHASE.DAT --data phase --type mdev --taus octave --json\n"
       "  imunoise allan rec.csv --column gyro_z_rad_per_s --tau0 0.0025 --taus decade\n"
+      "  imunoise allan imu.lcmlog --channel IMU --column gyro_z --taus log:10\n"
       "Values are in the unit of the input (rate data) or input unit per second (phase data);\n"
       "TDEV and TTOTDEV are in phase units. mtotdev, ttotdev, htotdev and theo1 cost O(M*m)\n"
       "per tau; theo1 uses even m with tau = 0.75*m*tau0.");
-  cmd->add_option("file", args->file, "CSV/TXT file: one value per line, or columns (see --column)")
+  cmd->add_option("file", args->file,
+                  "CSV/TXT file: one value per line, or columns (see --column); or an LCM log")
       ->required();
   cmd->add_option("--column", args->column,
-                  "column name (header) or 1-based index; needed when the file has several");
+                  "column name (header) or 1-based index; needed when the file has several. For "
+                  "an LCM log: the channel, gyro_x … accel_z");
+  add_lcm_input_options(*cmd, args->lcm);
   cmd->add_option("--data", args->data, "the series is rate ('frequency') or integrated ('phase')")
       ->check(CLI::IsMember({"rate", "phase"}))
       ->capture_default_str();

@@ -35,8 +35,11 @@
 #include "io/simulation_model.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
+#include "tools/analysis_job.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
+#include "tools/lcm_bus.h"
+#include "tools/recording_input.h"
 
 namespace imunoise::tools {
 
@@ -48,19 +51,15 @@ struct AnalyzeArgs {
   std::string file;
   io::InputConfig flags;
   std::string config_path;
+  LcmInputFlags lcm;
   std::string output_dir;
-  std::string taus = "log:10";
-  double confidence = 0.95;
-  int bootstrap = 50;
-  std::uint64_t seed = 1;
-  unsigned threads = 0;
-  bool gauss_markov = false;
-  bool no_low_pass_check = false;
-  double tau_min_s = 0.0;
-  double tau_max_s = 0.0;
+  AnalysisSettings analysis;
   std::string truth_path;
-  std::vector<double> sinusoid_hz;
   bool quiet = false;
+  bool publish = false;
+  std::string lcm_url = kDefaultLcmUrl;
+  std::string model_channel = "NOISE_MODEL";
+  std::string curves_channel = "ALLAN_CURVE";
 };
 
 std::string fixed(double value, int digits = 4) {
@@ -68,45 +67,6 @@ std::string fixed(double value, int digits = 4) {
   out.precision(digits);
   out << value;
   return out.str();
-}
-
-/// Data-quality findings from the sampling report, one line each (empty = nothing to say).
-std::vector<std::string> quality_findings(const io::SamplingReport& report) {
-  std::vector<std::string> out;
-  const io::TimingReport& t = report.timing;
-  if (t.gap_count > 0) {
-    out.push_back(std::to_string(t.gap_count) + " time-stamp gap(s), longest " +
-                  fixed(t.longest_gap_s) + " s, about " + std::to_string(t.missing_samples) +
-                  " samples missing; the analysis assumes uniform sampling");
-  }
-  if (t.non_monotonic_count > 0) {
-    out.push_back(std::to_string(t.non_monotonic_count) + " non-monotonic time stamp(s)");
-  }
-  if (t.duplicate_count > 0) {
-    out.push_back(std::to_string(t.duplicate_count) + " duplicate time stamp(s)");
-  }
-  if (t.has_timestamps && t.median_interval_s > 0.0 &&
-      t.jitter_rms_s > 0.01 * t.median_interval_s) {
-    out.push_back("time-stamp jitter " + fixed(t.jitter_rms_s) + " s RMS (" +
-                  fixed(100.0 * t.jitter_rms_s / t.median_interval_s, 3) + " % of the interval)");
-  }
-  if (report.rows_dropped > 0) {
-    out.push_back(std::to_string(report.rows_dropped) + " row(s) with NaN/Inf dropped");
-  }
-  for (const io::ChannelReport& c : report.channels) {
-    if (c.saturated_samples > 0) {
-      out.push_back(c.name + ": " + std::to_string(c.saturated_samples) +
-                    " samples in saturation runs at the range limits");
-    }
-    if (c.beyond_full_scale > 0) {
-      out.push_back(c.name + ": " + std::to_string(c.beyond_full_scale) +
-                    " samples at or beyond the full scale");
-    }
-    if (c.lsb)
-      out.push_back(c.name + ": output quantized, LSB " + shortest_number_text(*c.lsb) + " " +
-                    c.unit);
-  }
-  return out;
 }
 
 /// A coefficient in the unit people read on datasheets, with that unit's name.
@@ -299,13 +259,6 @@ void print_summary(const models::NoiseModel& model,
 
 void run_analyze(const AnalyzeArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
-  if (!(args.confidence > 0.0 && args.confidence < 1.0)) {
-    throw InputError("--confidence: expected a level in (0, 1), got " +
-                     shortest_number_text(args.confidence));
-  }
-  if (args.bootstrap == 1 || args.bootstrap < 0) {
-    throw InputError("--bootstrap: expected 0 (off) or at least 2 replicates");
-  }
   std::optional<std::array<NoiseCoefficients, 6>> truth;
   if (!args.truth_path.empty()) {
     const io::SimulationModelFile file = io::load_simulation_model(args.truth_path);
@@ -317,87 +270,15 @@ void run_analyze(const AnalyzeArgs& args) {
     truth = values;
   }
   const bool progress = !args.quiet && isatty(STDERR_FILENO);
+  // Open the bus before the work: a bad --lcm-url fails in a second, not after the analysis.
+  std::optional<LcmBus> bus;
+  if (args.publish) bus.emplace(args.lcm_url);
 
-  const io::Recording recording = io::read_recording(args.file, config);
-  const double tau0_s = recording.sample_period_s;
-  std::vector<std::pair<std::size_t, const io::Channel*>> channels;
-  for (std::size_t c = 0; c < kImuChannelNames.size(); ++c) {
-    if (const io::Channel* channel = recording.find_channel(kImuChannelNames[c])) {
-      channels.emplace_back(c, channel);
-    }
-  }
-  if (channels.empty()) {
-    throw InputError(args.file + ": no gyro or accelerometer channels to analyse");
-  }
-
-  pipeline::AxisAnalysisOptions options;
-  options.confidence = args.confidence;
-  options.grid = analysis::parse_tau_grid(args.taus);
-  options.bootstrap_replicates = args.bootstrap;
-  options.seed = args.seed;
-  options.fit.gauss_markov =
-      args.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
-  options.fit.tau_min_s = args.tau_min_s;
-  for (double f : args.sinusoid_hz) {
-    if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
-      throw InputError("--sinusoid-hz: " + shortest_number_text(f) +
-                       " Hz is not in (0, Nyquist = " + shortest_number_text(0.5 / tau0_s) +
-                       " Hz)");
-    }
-  }
-  options.fit.sinusoid_frequencies_hz = args.sinusoid_hz;
-  options.fit.tau_max_s = args.tau_max_s;
-  options.auto_low_pass = !args.no_low_pass_check;
-
-  // Axes in parallel: each worker takes the next axis (one thread per axis; the bootstrap of
-  // an axis runs in that thread, so the total never exceeds --threads).
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned threads = std::min<unsigned>(args.threads == 0 ? hardware : args.threads,
-                                              static_cast<unsigned>(channels.size()));
-  std::vector<std::optional<pipeline::AxisAnalysis>> results(channels.size());
-  std::vector<std::exception_ptr> errors(channels.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex print_mutex;
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < channels.size(); i = next++) {
-      const auto [index, channel] = channels[i];
-      try {
-        results[i] = pipeline::analyze_axis(channel->name, index < 3, channel->values, tau0_s,
-                                            static_cast<int>(index), options);
-        if (progress) {
-          std::lock_guard<std::mutex> lock(print_mutex);
-          std::cerr << "  " << channel->name << " done\n";
-        }
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  if (progress) {
-    std::cerr << "imunoise analyze: " << channels.size() << " channels on " << threads
-              << " thread(s), bootstrap " << args.bootstrap << " replicates\n";
-  }
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  for (std::size_t i = 0; i < channels.size(); ++i) {
-    if (errors[i]) std::rethrow_exception(errors[i]);
-  }
-
-  models::NoiseModel model;
-  model.source = args.file;
-  model.sensor_name = std::filesystem::path(args.file).filename().string();
-  model.sample_rate_hz = 1.0 / tau0_s;
-  model.samples = static_cast<std::int64_t>(recording.sample_count());
-  model.duration_s = static_cast<double>(model.samples) * tau0_s;
-  model.confidence = args.confidence;
-  model.data_quality = quality_findings(recording.report);
-  std::vector<pipeline::AxisAnalysis> axes;
-  for (auto& r : results) {
-    model.axes.push_back(r->model);
-    axes.push_back(std::move(*r));
-  }
+  const io::Recording recording = read_input_recording(args.file, config, args.lcm);
+  AnalysisResult result = analyze_recording(recording, args.file, args.analysis, progress);
+  const models::NoiseModel& model = result.model;
+  const std::vector<pipeline::AxisAnalysis>& axes = result.axes;
+  const double tau0_s = result.tau0_s;
 
   std::filesystem::create_directories(args.output_dir);
   const std::filesystem::path dir(args.output_dir);
@@ -406,6 +287,16 @@ void run_analyze(const AnalyzeArgs& args) {
   write_psd_csv((dir / "psd.csv").string(), axes, tau0_s);
   print_summary(model, truth);
   std::cout << "\nwrote " << (dir / "model.yaml").string() << ", allan.csv, psd.csv\n";
+  if (bus) {
+    const std::int64_t utime = now_utime_us();
+    bus->publish(args.model_channel, io::noise_model_message(model, utime));
+    const std::vector<io::DeviationSeries> curves = oadev_series(axes);
+    for (const io::DeviationSeries& c : curves) {
+      bus->publish(args.curves_channel, io::allan_curve_message(c, utime));
+    }
+    std::cout << "published the model on '" << args.model_channel << "' and " << curves.size()
+              << " OADEV curves on '" << args.curves_channel << "' (" << args.lcm_url << ")\n";
+  }
 }
 
 }  // namespace
@@ -417,37 +308,38 @@ void register_analyze_command(CLI::App& app) {
       "Fit the stochastic error model of every gyro and accelerometer axis of a stationary "
       "recording (OADEV + OHDEV with intervals, PSD, weighted NNLS fit with bootstrap "
       "intervals) and write DIR/model.yaml, allan.csv and psd.csv");
-  cmd->add_option("REC", args->file, "recording (CSV/TXT; see 'imunoise check --help')")
+  cmd->add_option("REC", args->file,
+                  "recording: CSV/TXT (see 'imunoise check --help') or an lcm-logger log")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
+  add_lcm_input_options(*cmd, args->lcm);
   cmd->add_option("-o,--output", args->output_dir, "output directory (created if needed)")
       ->required();
-  cmd->add_option("--taus", args->taus, "tau grid: octave, decade, log:N (default log:10)");
-  cmd->add_option("--confidence", args->confidence, "interval level (default 0.95)");
-  cmd->add_option("--bootstrap", args->bootstrap,
-                  "parametric bootstrap replicates per axis (default 50; 0 = least-squares "
-                  "intervals, which ignore the correlation between tau points)");
-  cmd->add_option("--seed", args->seed, "bootstrap seed (default 1)");
-  cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)");
-  cmd->add_flag("--gauss-markov", args->gauss_markov,
-                "also fit first-order Gauss-Markov terms (grid of correlation times, refined)");
-  cmd->add_option("--sinusoid-hz", args->sinusoid_hz,
-                  "candidate sinusoid frequencies F1,F2,... [Hz] (e.g. lines seen in psd.csv); "
-                  "each amplitude is fitted and kept only if the data support it")
-      ->delimiter(',');
-  cmd->add_option("--tau-min", args->tau_min_s, "fit only tau >= this [s]");
-  cmd->add_option("--tau-max", args->tau_max_s, "fit only tau <= this [s]");
-  cmd->add_flag("--no-low-pass-check", args->no_low_pass_check,
-                "keep the shortest tau even where the curve bends below the white-noise line");
+  add_analysis_options(*cmd, args->analysis);
   cmd->add_option("--truth", args->truth_path,
                   "simulator model file (e.g. the one given to 'imunoise simulate'): print the "
                   "true coefficients next to the recovered ones");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress messages");
+  const std::string lcm_group = "Publishing on LCM";
+  cmd->add_flag("--publish", args->publish,
+                "at the end, publish the model (imunoise.noise_model_t) and the OADEV curves "
+                "(imunoise.allan_curve_t) on LCM")
+      ->group(lcm_group);
+  cmd->add_option("--lcm-url", args->lcm_url, "LCM provider URL for --publish")
+      ->capture_default_str()
+      ->group(lcm_group);
+  cmd->add_option("--model-channel", args->model_channel, "channel of the model")
+      ->capture_default_str()
+      ->group(lcm_group);
+  cmd->add_option("--curves-channel", args->curves_channel, "channel of the curves")
+      ->capture_default_str()
+      ->group(lcm_group);
   cmd->footer(
       "Examples:\n"
       "  imunoise simulate configs/reference-imu.yaml --duration 8h --rate 50 --seed 1 -o rec.csv\n"
       "  imunoise analyze rec.csv -o out --truth configs/reference-imu.yaml\n"
       "  imunoise analyze imu.txt --config configs/example_input.yaml -o out --bootstrap 0\n"
+      "  imunoise analyze imu.lcmlog --channel IMU -o out --publish\n"
       "Outputs: model.yaml (SI units named in every key, docs/model-yaml.md), allan.csv\n"
       "(OADEV/OHDEV with intervals and the model ADEV, per axis), psd.csv (log-binned one-sided\n"
       "PSD with dof and the model PSD, per axis); units are part of every column name.");

@@ -11,6 +11,7 @@
 #include "io/sampling_report.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
+#include "tools/recording_input.h"
 
 namespace imunoise::tools {
 
@@ -18,6 +19,7 @@ namespace {
 
 struct CheckArgs {
   std::string file;
+  LcmInputFlags lcm;
   io::InputConfig flags;
   std::string config_path;
   bool json = false;
@@ -25,7 +27,7 @@ struct CheckArgs {
 
 void run_check(const CheckArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
-  const io::Recording recording = io::read_recording(args.file, config);
+  const io::Recording recording = read_input_recording(args.file, config, args.lcm);
   if (args.json) {
     std::cout << io::sampling_report_to_json(recording.report, args.file).dump(2) << "\n";
   } else {
@@ -53,6 +55,7 @@ void register_check_command(CLI::App& app) {
   cmd->add_option("REC", args->file, "recording: CSV/TXT with a header row, or headerless")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
+  add_lcm_input_options(*cmd, args->lcm);
   cmd->add_flag("--json", args->json,
                 "print one JSON object (keys carry units: rate_hz, longest_gap_s, jitter_rms_s)");
   cmd->callback([args] { run_check(*args); });

@@ -27,12 +27,14 @@
 #include "tools/duration.h"
 #include "tools/gm_convention_option.h"
 #include "tools/input_options.h"
+#include "tools/recording_input.h"
 
 namespace imunoise::tools {
 namespace {
 
 struct DriftArgs {
   std::string file;
+  LcmInputFlags lcm;
   io::InputConfig flags;
   std::string config_path;
   std::string model_path;
@@ -84,7 +86,7 @@ void run_drift(DriftArgs a) {
   if (o.report_times_s.empty()) o.report_times_s.push_back(o.navigation_s);
 
   const io::InputConfig config = resolve_input_config(a.flags, a.config_path);
-  const io::Recording recording = io::read_recording(a.file, config);
+  const io::Recording recording = read_input_recording(a.file, config, a.lcm);
   pipeline::ImuSeries series;
   series.sample_period_s = recording.sample_period_s;
   for (int c = 0; c < 6; ++c) {
@@ -263,6 +265,7 @@ void register_drift_command(CLI::App& app) {
   cmd->add_option("REC", args->file, "recording (CSV/TXT; see 'imunoise check --help')")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
+  add_lcm_input_options(*cmd, args->lcm);
   cmd->add_option("--model", args->model_path, "fitted model.yaml (imunoise analyze)")
       ->required()
       ->check(CLI::ExistingFile);

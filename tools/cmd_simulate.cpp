@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
+#include <imunoise/imu_sample_t.hpp>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,6 +25,7 @@
 #include "common/number_text.h"
 #include "common/units.h"
 #include "io/atomic_output.h"
+#include "io/lcm_log_writer.h"
 #include "io/noise_model_yaml.h"
 #include "io/simulation_model.h"
 #include "models/noise_simulator.h"
@@ -47,6 +49,7 @@ struct SimulateArgs {
   double rate_hz = 0.0;
   std::uint64_t seed = 1;
   std::string output;
+  std::string lcm_channel = "IMU";
   double gyro_arw_deg_per_sqrt_h = 0.0;
   double gyro_bias_instability_deg_per_h = 0.0;
   double gyro_rrw_deg_per_h_per_sqrt_h = 0.0;
@@ -62,6 +65,13 @@ struct SimulateArgs {
   /// Options whose presence decides whether they override the model file.
   std::vector<std::pair<CLI::Option*, std::function<void(SimulationSetup&)>>> overrides;
 };
+
+/// An output path that asks for an LCM log.
+bool is_lcm_log_path(const std::string& path) {
+  const std::string suffix = ".lcmlog";
+  return path.size() > suffix.size() &&
+         path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
 
 /// Writes the '#' header: source, seed, rate, and every non-zero term per channel (SI keys).
 void write_header(std::ostream& out, const SimulationSetup& setup, const SimulateArgs& args,
@@ -185,7 +195,11 @@ void run_simulate(const SimulateArgs& args) {
   // 2. Generate and write block by block: memory stays constant for any duration.
   io::AtomicOutputFile file(args.output);
   std::ostream& out = file.stream();
-  write_header(out, setup, args, rate_hz, duration_s, samples, band);
+  const bool lcm_log = is_lcm_log_path(args.output);
+  if (!lcm_log) write_header(out, setup, args, rate_hz, duration_s, samples, band);
+  io::LcmLogWriter log_writer(out);
+  imunoise::imu_sample_t message{};
+  std::vector<unsigned char> encoded(static_cast<std::size_t>(message.getEncodedSize()));
 
   constexpr std::size_t kBlock = 4096;
   constexpr std::size_t kMaxRowChars = 7 * 25;  // 7 fields, each ≤ 24 chars plus separator
@@ -199,6 +213,21 @@ void run_simulate(const SimulateArgs& args) {
       spans[c] = std::span<double>(values).subspan(c * kBlock, n);
     }
     simulator.next_block(spans);
+    if (lcm_log) {
+      // imu_sample_t in SI, stamped in whole µs from 0 (the same stamp as the log event).
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto k = static_cast<double>(done + static_cast<std::int64_t>(i));
+        message.utime = std::llround(k * 1e6 / rate_hz);
+        for (std::size_t a = 0; a < 3; ++a) {
+          message.angular_rate_rad_per_s[a] = spans[a][i];
+          message.specific_force_m_per_s2[a] = spans[3 + a][i];
+        }
+        message.encode(encoded.data(), 0, static_cast<int>(encoded.size()));
+        log_writer.write(args.lcm_channel, message.utime, encoded);
+      }
+      done += static_cast<std::int64_t>(n);
+      continue;
+    }
     char* p = text.data();
     for (std::size_t i = 0; i < n; ++i) {
       const double t = static_cast<double>(done + static_cast<std::int64_t>(i)) / rate_hz;
@@ -235,7 +264,12 @@ void register_simulate_command(CLI::App& app) {
   sub->add_option("--rate", args->rate_hz, "sample rate [Hz] (default: the model's sample_rate_hz)")
       ->check(number_check(true));
   sub->add_option("--seed", args->seed, "random seed (default 1)");
-  sub->add_option("-o,--output", args->output, "output CSV file")->required();
+  sub->add_option("-o,--output", args->output,
+                  "output file: CSV, or an LCM log of imunoise.imu_sample_t when it ends in "
+                  ".lcmlog (as lcm-logger writes; replay with lcm-logplayer)")
+      ->required();
+  sub->add_option("--lcm-channel", args->lcm_channel, "channel of the samples in a .lcmlog output")
+      ->capture_default_str();
 
   // Per-term flags: human units at the edge, converted once here (common/units.h); each one
   // sets that term on all three axes, overriding the model file.

@@ -14,6 +14,8 @@ void register_allan_command(CLI::App& app);       ///< imunoise allan
 void register_analyze_command(CLI::App& app);     ///< imunoise analyze (the whole job)
 void register_check_command(CLI::App& app);       ///< imunoise check (sampling report)
 void register_export_command(CLI::App& app);      ///< imunoise export (filter configs)
+void register_live_command(CLI::App& app);        ///< imunoise live (LCM node)
+void register_publish_command(CLI::App& app);     ///< imunoise publish (LCM)
 void register_discretize_command(CLI::App& app);  ///< imunoise discretize (Phi, Qd)
 void register_drift_command(CLI::App& app);       ///< imunoise drift (INS drift vs model)
 void register_simulate_command(CLI::App& app);    ///< imunoise simulate

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   imunoise::tools::register_export_command(app);
   imunoise::tools::register_discretize_command(app);
   imunoise::tools::register_drift_command(app);
+  imunoise::tools::register_publish_command(app);
+  imunoise::tools::register_live_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

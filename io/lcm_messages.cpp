@@ -1,0 +1,210 @@
+/// @file
+/// @brief Conversions to and from imunoise's LCM messages (see lcm_messages.h).
+#include "io/lcm_messages.h"
+
+#include <cmath>
+#include <utility>
+
+#include "common/errors.h"
+
+namespace imunoise::io {
+
+std::string first_non_finite_field(const imunoise::imu_sample_t& m, std::int64_t* count) {
+  std::string first;
+  const auto check = [&](const double* values, int n, const char* field) {
+    for (int i = 0; i < n; ++i) {
+      if (std::isfinite(values[i])) continue;
+      ++*count;
+      if (first.empty()) {
+        // Built with append() only: GCC 12 raises a false -Wrestrict on `"[" + to_string(…)`.
+        first.append(field);
+        if (n > 1) first.append("[").append(std::to_string(i)).append("]");
+        first.append(" (")
+            .append(std::isnan(values[i]) ? "NaN" : (values[i] > 0 ? "+Inf" : "-Inf"))
+            .append(")");
+      }
+    }
+  };
+  if (m.has_increments) {
+    check(m.delta_angle_rad, 3, "delta_angle_rad");
+    check(m.delta_velocity_m_per_s, 3, "delta_velocity_m_per_s");
+  } else {
+    check(m.angular_rate_rad_per_s, 3, "angular_rate_rad_per_s");
+    check(m.specific_force_m_per_s2, 3, "specific_force_m_per_s2");
+  }
+  if (m.has_temperature) check(&m.temperature_degc, 1, "temperature_degc");
+  return first;
+}
+
+void append_imu_sample(const imunoise::imu_sample_t& m, ImuSampleColumns& samples) {
+  const bool increments = m.has_increments != 0;
+  if (samples.size() == 0) {
+    samples.increments = increments;
+    // Built with append() only: GCC 12 raises a false -Wrestrict on `"literal" + string`.
+    const auto field = [](const char* name, std::size_t a) {
+      return std::string(name).append("[").append(std::to_string(a)).append("]");
+    };
+    for (std::size_t a = 0; a < 3; ++a) {
+      samples.source_fields[a] =
+          field(increments ? "delta_angle_rad" : "angular_rate_rad_per_s", a);
+      samples.source_units[a] = increments ? "rad" : "rad/s";
+      samples.source_fields[3 + a] =
+          field(increments ? "delta_velocity_m_per_s" : "specific_force_m_per_s2", a);
+      samples.source_units[3 + a] = increments ? "m/s" : "m/s^2";
+    }
+    samples.temperature_field = "temperature_degc";
+  }
+  samples.utime_us.push_back(m.utime);
+  const double* gyro = increments ? m.delta_angle_rad : m.angular_rate_rad_per_s;
+  const double* accel = increments ? m.delta_velocity_m_per_s : m.specific_force_m_per_s2;
+  for (std::size_t a = 0; a < 3; ++a) {
+    samples.values[a].push_back(gyro[a]);
+    samples.values[3 + a].push_back(accel[a]);
+  }
+  // Temperature is a channel only if every sample has one: stop at the first that lacks it.
+  const std::size_t before = samples.size() - 1;
+  if (m.has_temperature && samples.temperature_degc.size() == before) {
+    samples.temperature_degc.push_back(m.temperature_degc);
+  }
+}
+
+imunoise::noise_model_t noise_model_message(const models::NoiseModel& model,
+                                            std::int64_t utime_us) {
+  imunoise::noise_model_t msg{};
+  msg.utime = utime_us;
+  msg.sensor_name = model.sensor_name;
+  msg.sample_rate_hz = model.sample_rate_hz;
+  msg.confidence_level = model.confidence;
+  msg.n_axes = static_cast<std::int32_t>(model.axes.size());
+  const struct {
+    std::vector<double>* value;
+    std::vector<double>* ci_low;
+    std::vector<double>* ci_high;
+    std::vector<int8_t>* identified;
+  } terms[5] = {
+      {&msg.quantization, &msg.quantization_ci_low, &msg.quantization_ci_high,
+       &msg.quantization_identified},
+      {&msg.white_noise, &msg.white_noise_ci_low, &msg.white_noise_ci_high,
+       &msg.white_noise_identified},
+      {&msg.bias_instability, &msg.bias_instability_ci_low, &msg.bias_instability_ci_high,
+       &msg.bias_instability_identified},
+      {&msg.random_walk, &msg.random_walk_ci_low, &msg.random_walk_ci_high,
+       &msg.random_walk_identified},
+      {&msg.ramp, &msg.ramp_ci_low, &msg.ramp_ci_high, &msg.ramp_identified},
+  };
+  for (const models::AxisModel& axis : model.axes) {
+    msg.axis_names.push_back(axis.name);
+    msg.is_gyro.push_back(axis.gyro ? 1 : 0);
+    for (std::size_t t = 0; t < 5; ++t) {
+      const models::Estimate& e = axis.terms[t];
+      terms[t].value->push_back(e.value);
+      terms[t].ci_low->push_back(e.ci_low);
+      terms[t].ci_high->push_back(e.ci_high);
+      terms[t].identified->push_back(e.identified ? 1 : 0);
+    }
+    // The message carries one GM per axis (the type's documented limit): the first fitted one.
+    const bool has_gm = !axis.gauss_markov.empty();
+    msg.gm_sigma.push_back(has_gm ? axis.gauss_markov.front().value.sigma : 0.0);
+    msg.gm_tau_c_s.push_back(has_gm ? axis.gauss_markov.front().value.tau_c_s : 0.0);
+  }
+  return msg;
+}
+
+models::NoiseModel noise_model_from_message(const imunoise::noise_model_t& msg) {
+  const auto n = static_cast<std::size_t>(msg.n_axes < 0 ? 0 : msg.n_axes);
+  const auto check = [&](std::size_t size, const char* field) {
+    if (size != n) {
+      throw InputError(std::string("noise_model_t: ") + field + " has " + std::to_string(size) +
+                       " entries, n_axes is " + std::to_string(msg.n_axes));
+    }
+  };
+  check(msg.axis_names.size(), "axis_names");
+  check(msg.is_gyro.size(), "is_gyro");
+  const struct {
+    const std::vector<double>* value;
+    const std::vector<double>* ci_low;
+    const std::vector<double>* ci_high;
+    const std::vector<int8_t>* identified;
+  } terms[5] = {
+      {&msg.quantization, &msg.quantization_ci_low, &msg.quantization_ci_high,
+       &msg.quantization_identified},
+      {&msg.white_noise, &msg.white_noise_ci_low, &msg.white_noise_ci_high,
+       &msg.white_noise_identified},
+      {&msg.bias_instability, &msg.bias_instability_ci_low, &msg.bias_instability_ci_high,
+       &msg.bias_instability_identified},
+      {&msg.random_walk, &msg.random_walk_ci_low, &msg.random_walk_ci_high,
+       &msg.random_walk_identified},
+      {&msg.ramp, &msg.ramp_ci_low, &msg.ramp_ci_high, &msg.ramp_identified},
+  };
+  for (const auto& t : terms) {
+    check(t.value->size(), "a coefficient array");
+    check(t.ci_low->size(), "a ci_low array");
+    check(t.ci_high->size(), "a ci_high array");
+    check(t.identified->size(), "an identified array");
+  }
+  check(msg.gm_sigma.size(), "gm_sigma");
+  check(msg.gm_tau_c_s.size(), "gm_tau_c_s");
+
+  models::NoiseModel model;
+  model.sensor_name = msg.sensor_name;
+  model.sample_rate_hz = msg.sample_rate_hz;
+  model.confidence = msg.confidence_level;
+  for (std::size_t i = 0; i < n; ++i) {
+    models::AxisModel axis;
+    axis.name = msg.axis_names[i];
+    axis.gyro = msg.is_gyro[i] != 0;
+    for (std::size_t t = 0; t < 5; ++t) {
+      models::Estimate& e = axis.terms[t];
+      e.value = (*terms[t].value)[i];
+      e.ci_low = (*terms[t].ci_low)[i];
+      e.ci_high = (*terms[t].ci_high)[i];
+      e.identified = (*terms[t].identified)[i] != 0;
+    }
+    if (msg.gm_sigma[i] > 0.0) {
+      models::GaussMarkovEstimate gm;
+      gm.value.sigma = msg.gm_sigma[i];
+      gm.value.tau_c_s = msg.gm_tau_c_s[i];
+      axis.gauss_markov.push_back(gm);
+    }
+    model.axes.push_back(std::move(axis));
+  }
+  return model;
+}
+
+imunoise::allan_curve_t allan_curve_message(const DeviationSeries& curve, std::int64_t utime_us) {
+  imunoise::allan_curve_t msg{};
+  msg.utime = utime_us;
+  msg.axis_name = curve.axis_name;
+  msg.statistic = curve.statistic;
+  msg.unit = curve.unit;
+  msg.confidence_level = curve.confidence;
+  msg.n = static_cast<std::int32_t>(curve.tau_s.size());
+  msg.tau_s = curve.tau_s;
+  msg.deviation = curve.deviation;
+  msg.ci_low = curve.ci_low;
+  msg.ci_high = curve.ci_high;
+  return msg;
+}
+
+imunoise::drift_prediction_t drift_prediction_message(const DriftSeries& drift,
+                                                      std::int64_t utime_us) {
+  imunoise::drift_prediction_t msg{};
+  msg.utime = utime_us;
+  msg.height_hold = drift.height_hold ? 1 : 0;
+  const std::size_t n = drift.time_s.size();
+  msg.n = static_cast<std::int32_t>(n);
+  msg.time_s = drift.time_s;
+  msg.horizontal_sigma_m = drift.horizontal_sigma_m;
+  msg.vertical_sigma_m = drift.vertical_sigma_m;
+  msg.attitude_sigma_rad = drift.attitude_sigma_rad;
+  msg.has_actual = drift.actual_horizontal_m.size() == n && n > 0 ? 1 : 0;
+  msg.actual_horizontal_m =
+      msg.has_actual ? drift.actual_horizontal_m : std::vector<double>(n, 0.0);
+  // Arrays the caller left short would make encode() read past them: pad with zeros.
+  msg.horizontal_sigma_m.resize(n, 0.0);
+  msg.vertical_sigma_m.resize(n, 0.0);
+  msg.attitude_sigma_rad.resize(n, 0.0);
+  return msg;
+}
+
+}  // namespace imunoise::io

@@ -1,0 +1,60 @@
+/// @file
+/// @brief Conversions between imunoise's values and its LCM messages (lcmtypes/): IMU samples
+/// in, noise model / deviation curves / drift prediction out. Pure conversions; publishing and
+/// subscribing live in tools/ (they need the LCM runtime).
+#pragma once
+
+#include <cstdint>
+#include <imunoise/allan_curve_t.hpp>
+#include <imunoise/drift_prediction_t.hpp>
+#include <imunoise/imu_sample_t.hpp>
+#include <imunoise/noise_model_t.hpp>
+#include <string>
+#include <vector>
+
+#include "io/imu_samples.h"
+#include "models/noise_model.h"
+
+namespace imunoise::io {
+
+/// The first non-finite value among the fields of `m` that a reader uses (rates or increments,
+/// temperature when present), as "field[i] (NaN)", or empty. Adds the number of non-finite
+/// used values to *count.
+std::string first_non_finite_field(const imunoise::imu_sample_t& m, std::int64_t* count);
+
+/// Appends `m` to `samples`: rates, or increments when has_increments (the first sample of an
+/// empty `samples` sets `increments` and the source field names; the caller checks that later
+/// samples agree). Temperature is kept while every sample has one.
+void append_imu_sample(const imunoise::imu_sample_t& m, ImuSampleColumns& samples);
+
+/// The noise_model_t of `model` (axes in model order; one GM per axis: the first fitted GM
+/// term, else none). `utime_us` is the publication time.
+imunoise::noise_model_t noise_model_message(const models::NoiseModel& model, std::int64_t utime_us);
+
+/// The NoiseModel a noise_model_t describes: sensor name, rate, confidence, per axis the five
+/// terms (value, interval, identified) and the GM term (no methods, notes or read-offs — the
+/// message does not carry them). Throws InputError when the array lengths disagree with
+/// n_axes (a message from a broken publisher).
+models::NoiseModel noise_model_from_message(const imunoise::noise_model_t& message);
+
+/// One deviation curve as an allan_curve_t.
+struct DeviationSeries {
+  std::string axis_name;    ///< gyro_x … accel_z
+  std::string statistic;    ///< "oadev", "ohdev", …
+  std::string unit;         ///< "rad/s" or "m/s^2"
+  double confidence = 0.0;  ///< level of [ci_low, ci_high]
+  std::vector<double> tau_s, deviation, ci_low, ci_high;
+};
+imunoise::allan_curve_t allan_curve_message(const DeviationSeries& curve, std::int64_t utime_us);
+
+/// Predicted drift (and the measured one, if any) as a drift_prediction_t. All vectors have
+/// the length of time_s (actual_horizontal_m may be empty: has_actual = false).
+struct DriftSeries {
+  bool height_hold = true;
+  std::vector<double> time_s, horizontal_sigma_m, vertical_sigma_m, attitude_sigma_rad;
+  std::vector<double> actual_horizontal_m;
+};
+imunoise::drift_prediction_t drift_prediction_message(const DriftSeries& drift,
+                                                      std::int64_t utime_us);
+
+}  // namespace imunoise::io

@@ -1,0 +1,192 @@
+#include "tools/analysis_job.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "analysis/tau_grid.h"
+#include "common/errors.h"
+#include "common/number_text.h"
+
+namespace imunoise::tools {
+
+namespace {
+
+std::string fixed(double value, int digits = 4) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << value;
+  return out.str();
+}
+
+pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau0_s) {
+  if (!(s.confidence > 0.0 && s.confidence < 1.0)) {
+    throw InputError("--confidence: expected a level in (0, 1), got " +
+                     shortest_number_text(s.confidence));
+  }
+  if (s.bootstrap == 1 || s.bootstrap < 0) {
+    throw InputError("--bootstrap: expected 0 (off) or at least 2 replicates");
+  }
+  pipeline::AxisAnalysisOptions options;
+  options.confidence = s.confidence;
+  options.grid = analysis::parse_tau_grid(s.taus);
+  options.bootstrap_replicates = s.bootstrap;
+  options.seed = s.seed;
+  options.fit.gauss_markov =
+      s.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
+  options.fit.tau_min_s = s.tau_min_s;
+  for (double f : s.sinusoid_hz) {
+    if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
+      throw InputError("--sinusoid-hz: " + shortest_number_text(f) +
+                       " Hz is not in (0, Nyquist = " + shortest_number_text(0.5 / tau0_s) +
+                       " Hz)");
+    }
+  }
+  options.fit.sinusoid_frequencies_hz = s.sinusoid_hz;
+  options.fit.tau_max_s = s.tau_max_s;
+  options.auto_low_pass = !s.no_low_pass_check;
+  return options;
+}
+
+}  // namespace
+
+void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
+  const std::string group = "Analysis";
+  cmd.add_option("--taus", s.taus, "tau grid: octave, decade, log:N (default log:10)")
+      ->group(group);
+  cmd.add_option("--confidence", s.confidence, "interval level (default 0.95)")->group(group);
+  cmd.add_option("--bootstrap", s.bootstrap,
+                 "parametric bootstrap replicates per axis (default 50; 0 = least-squares "
+                 "intervals, which ignore the correlation between tau points)")
+      ->group(group);
+  cmd.add_option("--seed", s.seed, "bootstrap seed (default 1)")->group(group);
+  cmd.add_option("--threads", s.threads, "worker threads (0 = all cores)")->group(group);
+  cmd.add_flag("--gauss-markov", s.gauss_markov,
+               "also fit first-order Gauss-Markov terms (grid of correlation times, refined)")
+      ->group(group);
+  cmd.add_option("--sinusoid-hz", s.sinusoid_hz,
+                 "candidate sinusoid frequencies F1,F2,... [Hz] (e.g. lines seen in psd.csv); "
+                 "each amplitude is fitted and kept only if the data support it")
+      ->delimiter(',')
+      ->group(group);
+  cmd.add_option("--tau-min", s.tau_min_s, "fit only tau >= this [s]")->group(group);
+  cmd.add_option("--tau-max", s.tau_max_s, "fit only tau <= this [s]")->group(group);
+  cmd.add_flag("--no-low-pass-check", s.no_low_pass_check,
+               "keep the shortest tau even where the curve bends below the white-noise line")
+      ->group(group);
+}
+
+std::vector<std::string> quality_findings(const io::SamplingReport& report) {
+  std::vector<std::string> out;
+  const io::TimingReport& t = report.timing;
+  if (t.gap_count > 0) {
+    out.push_back(std::to_string(t.gap_count) + " time-stamp gap(s), longest " +
+                  fixed(t.longest_gap_s) + " s, about " + std::to_string(t.missing_samples) +
+                  " samples missing; the analysis assumes uniform sampling");
+  }
+  if (t.non_monotonic_count > 0) {
+    out.push_back(std::to_string(t.non_monotonic_count) + " non-monotonic time stamp(s)");
+  }
+  if (t.duplicate_count > 0) {
+    out.push_back(std::to_string(t.duplicate_count) + " duplicate time stamp(s)");
+  }
+  if (t.has_timestamps && t.median_interval_s > 0.0 &&
+      t.jitter_rms_s > 0.01 * t.median_interval_s) {
+    out.push_back("time-stamp jitter " + fixed(t.jitter_rms_s) + " s RMS (" +
+                  fixed(100.0 * t.jitter_rms_s / t.median_interval_s, 3) + " % of the interval)");
+  }
+  if (report.rows_dropped > 0) {
+    out.push_back(std::to_string(report.rows_dropped) + " row(s) with NaN/Inf dropped");
+  }
+  for (const io::ChannelReport& c : report.channels) {
+    if (c.saturated_samples > 0) {
+      out.push_back(c.name + ": " + std::to_string(c.saturated_samples) +
+                    " samples in saturation runs at the range limits");
+    }
+    if (c.beyond_full_scale > 0) {
+      out.push_back(c.name + ": " + std::to_string(c.beyond_full_scale) +
+                    " samples at or beyond the full scale");
+    }
+    if (c.lsb)
+      out.push_back(c.name + ": output quantized, LSB " + shortest_number_text(*c.lsb) + " " +
+                    c.unit);
+  }
+  return out;
+}
+
+AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
+                                 const AnalysisSettings& settings, bool progress) {
+  const double tau0_s = recording.sample_period_s;
+  std::vector<std::pair<std::size_t, const io::Channel*>> channels;
+  for (std::size_t c = 0; c < io::kImuChannelNames.size(); ++c) {
+    if (const io::Channel* channel = recording.find_channel(io::kImuChannelNames[c])) {
+      channels.emplace_back(c, channel);
+    }
+  }
+  if (channels.empty()) {
+    throw InputError(source + ": no gyro or accelerometer channels to analyse");
+  }
+  const pipeline::AxisAnalysisOptions options = axis_options(settings, tau0_s);
+
+  // Axes in parallel: each worker takes the next axis (one thread per axis; the bootstrap of
+  // an axis runs in that thread, so the total never exceeds --threads). Each axis's result
+  // depends only on its data and index (seeded per axis), not on the thread that ran it.
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = std::min<unsigned>(settings.threads == 0 ? hardware : settings.threads,
+                                              static_cast<unsigned>(channels.size()));
+  std::vector<std::optional<pipeline::AxisAnalysis>> results(channels.size());
+  std::vector<std::exception_ptr> errors(channels.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex print_mutex;
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < channels.size(); i = next++) {
+      const auto [index, channel] = channels[i];
+      try {
+        results[i] = pipeline::analyze_axis(channel->name, index < 3, channel->values, tau0_s,
+                                            static_cast<int>(index), options);
+        if (progress) {
+          std::lock_guard<std::mutex> lock(print_mutex);
+          std::cerr << "  " << channel->name << " done\n";
+        }
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  if (progress) {
+    std::cerr << "imunoise: analysing " << channels.size() << " channels on " << threads
+              << " thread(s), bootstrap " << settings.bootstrap << " replicates\n";
+  }
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+  }
+
+  AnalysisResult result;
+  result.tau0_s = tau0_s;
+  models::NoiseModel& model = result.model;
+  model.source = source;
+  model.sensor_name = std::filesystem::path(source).filename().string();
+  model.sample_rate_hz = 1.0 / tau0_s;
+  model.samples = static_cast<std::int64_t>(recording.sample_count());
+  model.duration_s = static_cast<double>(model.samples) * tau0_s;
+  model.confidence = settings.confidence;
+  model.data_quality = quality_findings(recording.report);
+  for (auto& r : results) {
+    model.axes.push_back(r->model);
+    result.axes.push_back(std::move(*r));
+  }
+  return result;
+}
+
+}  // namespace imunoise::tools

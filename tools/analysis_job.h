@@ -1,0 +1,54 @@
+/// @file
+/// @brief The analysis of `imunoise analyze`, shared with `imunoise live`: its flags, and one
+/// Recording → NoiseModel run over the six channels in parallel. The same flags and the same
+/// recording give the same model whichever command runs it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/recording.h"
+#include "models/noise_model.h"
+#include "pipeline/axis_analysis.h"
+
+namespace CLI {
+class App;
+}
+
+namespace imunoise::tools {
+
+/// The analysis flags (`--taus`, `--confidence`, `--bootstrap`, …) as given.
+struct AnalysisSettings {
+  std::string taus = "log:10";
+  double confidence = 0.95;
+  int bootstrap = 50;
+  std::uint64_t seed = 1;
+  unsigned threads = 0;
+  bool gauss_markov = false;
+  bool no_low_pass_check = false;
+  double tau_min_s = 0.0;
+  double tau_max_s = 0.0;
+  std::vector<double> sinusoid_hz;
+};
+
+/// Adds the analysis flags to `cmd`; values land in `settings` (which must outlive the parse).
+void add_analysis_options(CLI::App& cmd, AnalysisSettings& settings);
+
+/// The result of one analysis.
+struct AnalysisResult {
+  models::NoiseModel model;
+  std::vector<pipeline::AxisAnalysis> axes;  ///< in model.axes order
+  double tau0_s = 0.0;
+};
+
+/// Analyses every gyro/accel channel of `recording` (threads across channels). `source` names
+/// the data in the model (model.source; sensor_name is its file name). `progress` prints one
+/// line per finished channel on stderr. Throws InputError for bad settings (naming the flag)
+/// or a recording without IMU channels, AnalysisError when the data cannot give a fit.
+AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
+                                 const AnalysisSettings& settings, bool progress);
+
+/// Data-quality findings of a sampling report, one line each (empty = nothing to say).
+std::vector<std::string> quality_findings(const io::SamplingReport& report);
+
+}  // namespace imunoise::tools

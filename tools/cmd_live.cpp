@@ -1,0 +1,339 @@
+/// @file
+/// @brief `imunoise live`: an LCM node that subscribes to imunoise.imu_sample_t, keeps a
+/// rolling window of bounded memory, re-runs the analysis of `imunoise analyze` on it every
+/// --every of data, and publishes the model (and OADEV curves). Bad traffic — undecodable
+/// messages, another type on the channel, NaN/Inf, stamps out of order, a change between rates
+/// and increments, floods beyond the window — is counted and reported, never fatal.
+/// SIGINT/SIGTERM (or the end of a file:// log) stop it after one last analysis of new data.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <deque>
+#include <filesystem>
+#include <future>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "common/errors.h"
+#include "common/number_text.h"
+#include "io/lcm_messages.h"
+#include "io/noise_model_yaml.h"
+#include "tools/analysis_job.h"
+#include "tools/commands.h"
+#include "tools/duration.h"
+#include "tools/lcm_bus.h"
+
+namespace imunoise::tools {
+
+namespace {
+
+std::atomic<bool> g_stop_requested{false};
+
+extern "C" void request_stop(int) { g_stop_requested = true; }
+
+struct LiveArgs {
+  std::string url = kDefaultLcmUrl;
+  std::string publish_url;  // empty = url
+  std::string channel = "IMU";
+  std::string window = "30min";
+  std::string every = "60s";
+  std::string max_runtime;
+  std::int64_t max_samples = 5'000'000;
+  int queue_capacity = 100'000;
+  std::string model_channel = "NOISE_MODEL";
+  std::string curves_channel = "ALLAN_CURVE";
+  bool no_curves = false;
+  std::string output_dir;
+  AnalysisSettings analysis;
+  bool quiet = false;
+};
+
+/// What arrived, and what was done with it.
+struct LiveCounts {
+  std::int64_t received = 0;        ///< messages on the channel
+  std::int64_t accepted = 0;        ///< samples added to the window
+  std::int64_t undecodable = 0;     ///< wrong type, truncated or corrupt
+  std::int64_t non_finite = 0;      ///< NaN/Inf in a used field
+  std::int64_t out_of_order = 0;    ///< utime ≤ the last accepted one (incl. duplicates)
+  std::int64_t mode_changes = 0;    ///< has_increments differing from the window's samples
+  std::int64_t gaps = 0;            ///< intervals > 1.5 × the nominal period
+  std::int64_t trimmed_by_cap = 0;  ///< oldest samples dropped by --max-samples
+  std::int64_t analyses = 0, failed_analyses = 0, skipped_analyses = 0;
+  std::int64_t publish_failures = 0;
+};
+
+/// A number with 6 significant digits, for status lines.
+std::string short_number(double v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
+std::string counts_text(const LiveCounts& c) {
+  return "received " + std::to_string(c.received) + ", accepted " + std::to_string(c.accepted) +
+         ", undecodable " + std::to_string(c.undecodable) + ", non-finite " +
+         std::to_string(c.non_finite) + ", out of order " + std::to_string(c.out_of_order) +
+         ", rate/increment switches " + std::to_string(c.mode_changes) + ", gaps " +
+         std::to_string(c.gaps) + ", dropped by --max-samples " + std::to_string(c.trimmed_by_cap);
+}
+
+/// The rolling window and the message handler's state (touched only by the LCM thread that
+/// calls handle(), i.e. the main thread).
+class LiveWindow {
+ public:
+  LiveWindow(double window_s, std::int64_t max_samples)
+      : window_us_(static_cast<std::int64_t>(window_s * 1e6)), max_samples_(max_samples) {}
+
+  void on_message(const unsigned char* data, std::size_t size) {
+    ++counts_.received;
+    imunoise::imu_sample_t m{};
+    // decode() checks the fingerprint first: another type on the channel fails here.
+    if (size > static_cast<std::size_t>(INT32_MAX) ||
+        m.decode(data, 0, static_cast<int>(size)) != static_cast<int>(size)) {
+      ++counts_.undecodable;
+      return;
+    }
+    std::int64_t bad = 0;
+    if (!io::first_non_finite_field(m, &bad).empty()) {
+      ++counts_.non_finite;
+      return;
+    }
+    if (!window_.empty()) {
+      const imunoise::imu_sample_t& last = window_.back();
+      if (m.utime <= last.utime) {
+        ++counts_.out_of_order;
+        return;
+      }
+      if ((m.has_increments != 0) != (last.has_increments != 0)) {
+        ++counts_.mode_changes;
+        return;
+      }
+      if (nominal_period_us_ > 0 && (m.utime - last.utime) * 2 > nominal_period_us_ * 3) {
+        ++counts_.gaps;
+      }
+    }
+    window_.push_back(m);
+    ++counts_.accepted;
+    ++new_samples_;
+    while (window_.size() > 1 && window_.back().utime - window_.front().utime > window_us_) {
+      window_.pop_front();
+    }
+    while (static_cast<std::int64_t>(window_.size()) > max_samples_) {
+      window_.pop_front();
+      ++counts_.trimmed_by_cap;
+    }
+  }
+
+  /// Span of the window [s].
+  double span_s() const {
+    return window_.size() < 2
+               ? 0.0
+               : static_cast<double>(window_.back().utime - window_.front().utime) * 1e-6;
+  }
+  std::int64_t last_utime() const { return window_.empty() ? 0 : window_.back().utime; }
+  std::int64_t new_samples() const { return new_samples_; }
+
+  /// The window as columns for recording_from_imu_samples (the same path as the log reader).
+  io::ImuSampleColumns snapshot() {
+    io::ImuSampleColumns columns;
+    columns.utime_us.reserve(window_.size());
+    for (auto& v : columns.values) v.reserve(window_.size());
+    for (const imunoise::imu_sample_t& m : window_) io::append_imu_sample(m, columns);
+    new_samples_ = 0;
+    return columns;
+  }
+  void set_nominal_period_s(double period_s) {
+    nominal_period_us_ = static_cast<std::int64_t>(period_s * 1e6);
+  }
+
+  LiveCounts& counts() { return counts_; }
+
+ private:
+  std::int64_t window_us_;
+  std::int64_t max_samples_;
+  std::deque<imunoise::imu_sample_t> window_;
+  std::int64_t new_samples_ = 0;
+  std::int64_t nominal_period_us_ = 0;
+  LiveCounts counts_;
+};
+
+void handle_imu(const lcm::ReceiveBuffer* buffer, const std::string&, LiveWindow* window) {
+  window->on_message(static_cast<const unsigned char*>(buffer->data), buffer->data_size);
+}
+
+void run_live(const LiveArgs& args) {
+  const double window_s = parse_duration_s(args.window, "--window");
+  const double every_s = parse_duration_s(args.every, "--every");
+  // 0 = no limit.
+  const double max_runtime_s =
+      args.max_runtime.empty() ? 0.0 : parse_duration_s(args.max_runtime, "--max-runtime");
+  if (args.max_samples < 16) throw InputError("--max-samples: expected at least 16");
+  if (args.queue_capacity < 1) throw InputError("--queue-capacity: expected at least 1");
+  if (!args.output_dir.empty()) std::filesystem::create_directories(args.output_dir);
+
+  LcmBus bus(args.url);
+  // A separate output bus when asked (e.g. input replayed from a file:// log, which cannot be
+  // published to).
+  std::optional<LcmBus> publish_bus;
+  if (!args.publish_url.empty() && args.publish_url != args.url)
+    publish_bus.emplace(args.publish_url);
+  LcmBus& out_bus = publish_bus ? *publish_bus : bus;
+  LiveWindow window(window_s, args.max_samples);
+  lcm::Subscription* subscription = bus.lcm().subscribeFunction(args.channel, &handle_imu, &window);
+  // LCM queues messages per subscription while the handler is not being called; bounded, so a
+  // flood costs dropped messages, not memory.
+  subscription->setQueueCapacity(args.queue_capacity);
+
+  struct sigaction action {};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+
+  const std::string source = "lcm:" + args.channel;
+  const auto started = std::chrono::steady_clock::now();
+  std::int64_t analysed_until_us = 0;  // data time of the last analysis
+  std::future<AnalysisResult> running;
+  LiveCounts& counts = window.counts();
+
+  const auto log = [&](const std::string& line) {
+    if (!args.quiet) std::cerr << "imunoise live: " << line << "\n";
+  };
+  const auto start_analysis = [&] {
+    io::ImuSampleColumns columns = window.snapshot();
+    analysed_until_us = window.last_utime();
+    running = std::async(std::launch::async, [columns = std::move(columns), &args, source,
+                                              channel = args.channel]() mutable {
+      const io::Recording recording =
+          io::recording_from_imu_samples(std::move(columns), source, channel);
+      return analyze_recording(recording, source, args.analysis, false);
+    });
+  };
+  const auto finish_analysis = [&] {
+    try {
+      AnalysisResult result = running.get();
+      ++counts.analyses;
+      window.set_nominal_period_s(result.tau0_s);
+      const std::int64_t utime = now_utime_us();
+      try {
+        out_bus.publish(args.model_channel, io::noise_model_message(result.model, utime));
+        if (!args.no_curves) {
+          for (const io::DeviationSeries& c : oadev_series(result.axes)) {
+            out_bus.publish(args.curves_channel, io::allan_curve_message(c, utime));
+          }
+        }
+      } catch (const InputError& e) {
+        ++counts.publish_failures;  // a bus hiccup is not a reason to stop listening
+        log(e.what());
+      }
+      if (!args.output_dir.empty()) {
+        io::write_model_yaml(result.model,
+                             (std::filesystem::path(args.output_dir) / "model.yaml").string());
+      }
+      log("published model " + std::to_string(counts.analyses) + " (" +
+          std::to_string(result.model.samples) + " samples, " +
+          short_number(result.model.duration_s) + " s at " +
+          short_number(result.model.sample_rate_hz) + " Hz); " + counts_text(counts));
+    } catch (const InputError& e) {
+      ++counts.failed_analyses;
+      log(std::string("analysis failed, will retry with more data: ") + e.what());
+    } catch (const AnalysisError& e) {
+      ++counts.failed_analyses;
+      log(std::string("analysis failed, will retry with more data: ") + e.what());
+    }
+  };
+
+  log("listening on '" + args.channel + "' (" + args.url + "), window " + args.window +
+      ", analysis every " + args.every + " of data");
+  bool end_of_input = false;
+  while (!g_stop_requested) {
+    const int handled = bus.lcm().handleTimeout(100);
+    if (handled < 0) {
+      // A signal interrupts the wait (EINTR) — then the loop condition ends it; otherwise it
+      // is the file:// provider at the end of its log, or a dead socket.
+      if (g_stop_requested) break;
+      end_of_input = true;
+      break;
+    }
+    if (running.valid() && running.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      finish_analysis();
+    }
+    const bool due = window.new_samples() > 0 && window.span_s() >= every_s &&
+                     static_cast<double>(window.last_utime() - analysed_until_us) * 1e-6 >= every_s;
+    if (due) {
+      if (running.valid()) {
+        ++counts.skipped_analyses;  // the previous one still runs; the next check retries
+      } else {
+        start_analysis();
+      }
+    }
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
+    if (max_runtime_s > 0.0 && elapsed.count() >= max_runtime_s) {
+      break;
+    }
+  }
+  // One last analysis of whatever arrived since the previous one.
+  if (running.valid()) finish_analysis();
+  if (window.new_samples() > 0 && window.span_s() > 0.0) {
+    start_analysis();
+    finish_analysis();
+  }
+  bus.lcm().unsubscribe(subscription);
+  std::cout << "imunoise live: stopped ("
+            << (g_stop_requested ? "signal"
+                : end_of_input   ? "end of input"
+                                 : "--max-runtime")
+            << "); " << counts_text(counts) << "; analyses " << counts.analyses << ", failed "
+            << counts.failed_analyses << ", publish failures " << counts.publish_failures << "\n";
+}
+
+}  // namespace
+
+void register_live_command(CLI::App& app) {
+  auto args = std::make_shared<LiveArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "live",
+      "LCM node: subscribe to imunoise.imu_sample_t, keep a rolling window, re-fit the noise "
+      "model every --every of data and publish it (imunoise.noise_model_t, allan_curve_t)");
+  cmd->add_option("--channel", args->channel, "IMU channel to subscribe to")->capture_default_str();
+  cmd->add_option("--lcm-url", args->url, "LCM provider URL (file://LOG?speed=0 replays a log)")
+      ->capture_default_str();
+  cmd->add_option("--publish-url", args->publish_url,
+                  "LCM provider URL for the published estimates (default: --lcm-url)");
+  cmd->add_option("--window", args->window, "length of the rolling window of data")
+      ->capture_default_str();
+  cmd->add_option("--every", args->every,
+                  "re-analyse after this much new data (also the least data analysed)")
+      ->capture_default_str();
+  cmd->add_option("--max-samples", args->max_samples,
+                  "memory bound: most samples kept (oldest dropped and counted)")
+      ->capture_default_str();
+  cmd->add_option("--queue-capacity", args->queue_capacity,
+                  "LCM messages queued while busy before LCM drops them")
+      ->capture_default_str();
+  cmd->add_option("--max-runtime", args->max_runtime, "stop after this wall-clock time");
+  cmd->add_option("--model-channel", args->model_channel, "channel of the published model")
+      ->capture_default_str();
+  cmd->add_option("--curves-channel", args->curves_channel, "channel of the OADEV curves")
+      ->capture_default_str();
+  cmd->add_flag("--no-curves", args->no_curves, "publish the model only");
+  cmd->add_option("-o,--output", args->output_dir,
+                  "also write DIR/model.yaml after every analysis (atomically)");
+  add_analysis_options(*cmd, args->analysis);
+  cmd->add_flag("-q,--quiet", args->quiet, "no status lines on stderr");
+  cmd->footer(
+      "Examples:\n"
+      "  imunoise live --channel IMU --window 30min --every 60s\n"
+      "  imunoise live --channel IMU --lcm-url 'file:///data/imu.lcmlog?speed=0' --every 10min\n"
+      "Stops on SIGINT/SIGTERM after one last analysis of the data that arrived since the\n"
+      "previous one; the counts of bad or dropped messages are printed on exit.");
+  cmd->callback([args] { run_live(*args); });
+}
+
+}  // namespace imunoise::tools

@@ -1,0 +1,167 @@
+#include "tools/recording_input.h"
+
+#include <CLI/CLI.hpp>
+#include <array>
+#include <fstream>
+
+#include "common/errors.h"
+#include "io/csv_reader.h"
+#include "io/lcm_log.h"
+#include "io/lcm_type_definition.h"
+
+namespace imunoise::tools {
+
+namespace {
+
+/// The channel to read when --channel is not given: the log's only imu_sample_t channel.
+std::string default_channel(const std::string& path) {
+  const std::vector<io::LcmLogChannel> channels = io::list_lcm_log_channels(path);
+  std::string found;
+  int count = 0;
+  std::string listing;
+  for (const io::LcmLogChannel& c : channels) {
+    if (!listing.empty()) listing += ", ";
+    listing += "'" + c.name + "' (" + (c.type_name.empty() ? "other type" : c.type_name) + ", " +
+               std::to_string(c.event_count) + " events)";
+    if (c.type_name == "imunoise.imu_sample_t") {
+      found = c.name;
+      ++count;
+    }
+  }
+  if (count == 1) return found;
+  throw InputError(located_message(
+      path, 0, 0,
+      std::string(count == 0 ? "no imunoise.imu_sample_t channel"
+                             : "several imunoise.imu_sample_t channels") +
+          " in this LCM log; give --channel NAME (and --lcm-type FILE.lcm for an IMU message "
+          "type of your own); the log holds " +
+          (listing.empty() ? "no events" : listing)));
+}
+
+/// With --lcm-type and no --channel: the log's only channel carrying that type.
+std::string channel_of_type(const std::string& path, const io::LcmUserImuDecoder& decoder) {
+  std::vector<std::string> found;
+  for (const io::LcmLogChannel& c : io::list_lcm_log_channels(path)) {
+    if (c.fingerprint == decoder.fingerprint()) found.push_back(c.name);
+  }
+  if (found.size() == 1) return found.front();
+  throw InputError(located_message(
+      path, 0, 0,
+      (found.empty() ? "no channel" : std::to_string(found.size()) + " channels") +
+          std::string(" of type ") + decoder.type_name() + " (fingerprint " +
+          io::lcm_fingerprint_text(decoder.fingerprint()) + ") in this LCM log; give --channel"));
+}
+
+/// The user's IMU type from --lcm-type/--lcm-struct, its fields named by the column flags
+/// (--time-col default utime in µs, --gyro-cols and --accel-cols required) in the units of
+/// --time-unit, --gyro-unit and --accel-unit.
+io::LcmUserType user_type_of(const LcmInputFlags& lcm, const io::InputConfig& config) {
+  io::LcmUserType t;
+  t.definition_path = lcm.type_path;
+  t.type_name = lcm.struct_name;
+  if (!config.time_column.empty()) t.time_field = config.time_column;
+  t.time_unit_s = config.time_unit ? io::si_factor(*config.time_unit) : 1e-6;
+  if (config.gyro_columns.empty() || config.accel_columns.empty()) {
+    throw InputError("--lcm-type " + lcm.type_path +
+                     ": name the fields with --gyro-cols and --accel-cols (one 3-element array "
+                     "each, e.g. --gyro-cols gyro, or three fields, e.g. --gyro-cols gx,gy,gz)");
+  }
+  t.gyro_fields = config.gyro_columns;
+  t.accel_fields = config.accel_columns;
+  const io::GyroUnit gyro = config.gyro_unit.value_or(io::GyroUnit::kRadPerS);
+  const io::AccelUnit accel = config.accel_unit.value_or(io::AccelUnit::kMPerS2);
+  if (io::is_increment(gyro) != io::is_increment(accel)) {
+    throw InputError("--gyro-unit " + std::string(io::to_string(gyro)) + " and --accel-unit " +
+                     std::string(io::to_string(accel)) +
+                     ": a message type holds either rates or increments for both sensors");
+  }
+  t.gyro_scale_to_si = io::si_factor(gyro);
+  t.accel_scale_to_si = io::si_factor(accel);
+  t.increments = io::is_increment(gyro);
+  return t;
+}
+
+/// Table-only flags that mean nothing for an LCM log of imu_sample_t.
+void reject_table_flags(const std::string& path, const io::InputConfig& config, bool user_type) {
+  const auto reject = [&](bool given, const char* flag) {
+    if (given) {
+      throw InputError(path + ": " + flag + " applies to CSV/TXT tables; this file is an LCM log" +
+                       (user_type ? "" : " (imu_sample_t fields are SI by definition)"));
+    }
+  };
+  reject(config.delimiter.has_value(), "--delimiter");
+  reject(config.rate_hz.has_value(), "--rate");
+  reject(!config.extra_columns.empty(), "extra_columns");
+  if (!user_type) {
+    reject(!config.time_column.empty(), "--time-col");
+    reject(config.time_unit.has_value(), "--time-unit");
+    reject(!config.gyro_columns.empty(), "--gyro-cols");
+    reject(config.gyro_unit.has_value(), "--gyro-unit");
+    reject(!config.accel_columns.empty(), "--accel-cols");
+    reject(config.accel_unit.has_value(), "--accel-unit");
+  }
+}
+
+}  // namespace
+
+void add_lcm_input_options(CLI::App& cmd, LcmInputFlags& flags) {
+  const std::string group = "LCM log input (files written by lcm-logger)";
+  cmd.add_option("--channel", flags.channel,
+                 "IMU channel of an LCM log (default: the log's only imunoise.imu_sample_t "
+                 "channel)")
+      ->group(group);
+  cmd.add_option("--lcm-type", flags.type_path,
+                 "your own IMU message type: its .lcm definition; --time-col, --gyro-cols, "
+                 "--accel-cols and their units then name its fields (e.g. --gyro-cols gyro "
+                 "--gyro-unit deg/s)")
+      ->check(CLI::ExistingFile)
+      ->group(group);
+  cmd.add_option("--lcm-struct", flags.struct_name,
+                 "struct of --lcm-type to use, 'package.name' or 'name' (default: the only one)")
+      ->group(group);
+}
+
+bool is_lcm_log_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 4> head{};
+  if (!in.read(reinterpret_cast<char*>(head.data()), 4)) return false;
+  return head[0] == 0xED && head[1] == 0xA1 && head[2] == 0xDA && head[3] == 0x01;
+}
+
+io::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
+                                   const LcmInputFlags& lcm) {
+  if (!is_lcm_log_file(path)) {
+    if (!lcm.channel.empty() || !lcm.type_path.empty() || !lcm.struct_name.empty()) {
+      throw InputError(path +
+                       ": --channel, --lcm-type and --lcm-struct apply to LCM logs; this file "
+                       "does not start with the LCM log sync word (read as CSV/TXT without them)");
+    }
+    return io::read_recording(path, config);
+  }
+  const bool user_type = !lcm.type_path.empty();
+  if (!lcm.struct_name.empty() && !user_type) {
+    throw InputError("--lcm-struct needs --lcm-type (the .lcm file that defines the struct)");
+  }
+  reject_table_flags(path, config, user_type);
+  io::LcmReadOptions options;
+  options.drop_non_finite = config.drop_non_finite.value_or(false);
+  if (user_type) options.user_type = user_type_of(lcm, config);
+  std::string channel = lcm.channel;
+  if (channel.empty()) {
+    channel = options.user_type ? channel_of_type(path, io::LcmUserImuDecoder(*options.user_type))
+                                : default_channel(path);
+  }
+  io::Recording recording = io::read_lcm_imu_log(path, channel, options);
+  if (options.user_type) {
+    // Name the source units as the user wrote them ("deg/s", not a factor).
+    const std::string gyro(io::to_string(config.gyro_unit.value_or(io::GyroUnit::kRadPerS)));
+    const std::string accel(io::to_string(config.accel_unit.value_or(io::AccelUnit::kMPerS2)));
+    for (io::Channel& c : recording.channels) {
+      if (c.name.rfind("gyro_", 0) == 0) c.source_unit = gyro;
+      if (c.name.rfind("accel_", 0) == 0) c.source_unit = accel;
+    }
+  }
+  return recording;
+}
+
+}  // namespace imunoise::tools
