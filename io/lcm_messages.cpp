@@ -2,12 +2,36 @@
 /// @brief Conversions to and from imunoise's LCM messages (see lcm_messages.h).
 #include "io/lcm_messages.h"
 
+#include <array>
 #include <cmath>
 #include <utility>
 
 #include "common/errors.h"
 
 namespace imunoise::io {
+
+namespace {
+
+/// The four arrays of each IEEE-952 term in a noise_model_t, in models::Term order (const or
+/// not with the message), so writing and reading walk the same table.
+template <typename Message>
+auto term_arrays(Message& m) {
+  struct Arrays {
+    decltype(&m.quantization) value, ci_low, ci_high;
+    decltype(&m.quantization_identified) identified;
+  };
+  return std::array<Arrays, 5>{{
+      {&m.quantization, &m.quantization_ci_low, &m.quantization_ci_high,
+       &m.quantization_identified},
+      {&m.white_noise, &m.white_noise_ci_low, &m.white_noise_ci_high, &m.white_noise_identified},
+      {&m.bias_instability, &m.bias_instability_ci_low, &m.bias_instability_ci_high,
+       &m.bias_instability_identified},
+      {&m.random_walk, &m.random_walk_ci_low, &m.random_walk_ci_high, &m.random_walk_identified},
+      {&m.ramp, &m.ramp_ci_low, &m.ramp_ci_high, &m.ramp_identified},
+  }};
+}
+
+}  // namespace
 
 std::string first_non_finite_field(const imunoise::imu_sample_t& m, std::int64_t* count) {
   std::string first;
@@ -76,22 +100,8 @@ imunoise::noise_model_t noise_model_message(const models::NoiseModel& model,
   msg.sample_rate_hz = model.sample_rate_hz;
   msg.confidence_level = model.confidence;
   msg.n_axes = static_cast<std::int32_t>(model.axes.size());
-  const struct {
-    std::vector<double>* value;
-    std::vector<double>* ci_low;
-    std::vector<double>* ci_high;
-    std::vector<int8_t>* identified;
-  } terms[5] = {
-      {&msg.quantization, &msg.quantization_ci_low, &msg.quantization_ci_high,
-       &msg.quantization_identified},
-      {&msg.white_noise, &msg.white_noise_ci_low, &msg.white_noise_ci_high,
-       &msg.white_noise_identified},
-      {&msg.bias_instability, &msg.bias_instability_ci_low, &msg.bias_instability_ci_high,
-       &msg.bias_instability_identified},
-      {&msg.random_walk, &msg.random_walk_ci_low, &msg.random_walk_ci_high,
-       &msg.random_walk_identified},
-      {&msg.ramp, &msg.ramp_ci_low, &msg.ramp_ci_high, &msg.ramp_identified},
-  };
+  const auto terms = term_arrays(msg);
+
   for (const models::AxisModel& axis : model.axes) {
     msg.axis_names.push_back(axis.name);
     msg.is_gyro.push_back(axis.gyro ? 1 : 0);
@@ -120,22 +130,8 @@ models::NoiseModel noise_model_from_message(const imunoise::noise_model_t& msg) 
   };
   check(msg.axis_names.size(), "axis_names");
   check(msg.is_gyro.size(), "is_gyro");
-  const struct {
-    const std::vector<double>* value;
-    const std::vector<double>* ci_low;
-    const std::vector<double>* ci_high;
-    const std::vector<int8_t>* identified;
-  } terms[5] = {
-      {&msg.quantization, &msg.quantization_ci_low, &msg.quantization_ci_high,
-       &msg.quantization_identified},
-      {&msg.white_noise, &msg.white_noise_ci_low, &msg.white_noise_ci_high,
-       &msg.white_noise_identified},
-      {&msg.bias_instability, &msg.bias_instability_ci_low, &msg.bias_instability_ci_high,
-       &msg.bias_instability_identified},
-      {&msg.random_walk, &msg.random_walk_ci_low, &msg.random_walk_ci_high,
-       &msg.random_walk_identified},
-      {&msg.ramp, &msg.ramp_ci_low, &msg.ramp_ci_high, &msg.ramp_identified},
-  };
+  const auto terms = term_arrays(msg);
+
   for (const auto& t : terms) {
     check(t.value->size(), "a coefficient array");
     check(t.ci_low->size(), "a ci_low array");

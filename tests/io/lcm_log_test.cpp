@@ -26,59 +26,19 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "lcm_test_support.h"
 #include "test_support.h"
 
 namespace imunoise::io {
 namespace {
 
 using ::testing::HasSubstr;
-using Bytes = std::vector<unsigned char>;
+using Bytes = test::LcmBytes;
+using LogWriter = test::LcmLogFileWriter;
 
 constexpr std::int64_t kEpochUs = 1'700'000'000'000'000;  // 2023-11-14, µs since the epoch
 constexpr std::int64_t kStepUs = 5'000;                   // 200 Hz
 constexpr std::uint64_t kHeaderBytes = 28;                // LCM event header
-
-template <typename T>
-Bytes encode(const T& message) {
-  Bytes out(static_cast<std::size_t>(message.getEncodedSize()));
-  EXPECT_EQ(message.encode(out.data(), 0, static_cast<int>(out.size())),
-            static_cast<int>(out.size()));
-  return out;
-}
-
-/// Writes a log with lcm::LogFile (LCM's eventlog writer) and records each event's offset.
-class LogWriter {
- public:
-  explicit LogWriter(const std::filesystem::path& path) {
-    file_.emplace(path.string(), "w");
-    EXPECT_TRUE(file_->good()) << path;
-  }
-  /// Flushes and closes the file (reading before this may see a partial log).
-  void close() { file_.reset(); }
-  void write_raw(const std::string& channel, Bytes data, std::int64_t timestamp_us = kEpochUs) {
-    lcm::LogEvent event{};
-    event.timestamp = timestamp_us;
-    event.channel = channel;
-    event.datalen = static_cast<std::int32_t>(data.size());
-    event.data = data.data();
-    ASSERT_TRUE(file_.has_value());
-    ASSERT_EQ(file_->writeEvent(&event), 0);
-    offsets_.push_back(next_offset_);
-    next_offset_ += kHeaderBytes + channel.size() + data.size();
-  }
-  template <typename T>
-  void write(const std::string& channel, const T& message) {
-    write_raw(channel, encode(message));
-  }
-  /// Byte offset of event i in the file.
-  std::uint64_t offset(std::size_t i) const { return offsets_.at(i); }
-  std::uint64_t size() const { return next_offset_; }
-
- private:
-  std::optional<lcm::LogFile> file_;
-  std::vector<std::uint64_t> offsets_;
-  std::uint64_t next_offset_ = 0;
-};
 
 /// Sample i: distinctive values (different per axis and field, some not representable in few
 /// decimal digits) so a mix-up or a rounding shows.
@@ -328,7 +288,7 @@ TEST(LcmLog, WrongTypeOnTheChannelNamesBothFingerprints) {
 }
 
 TEST(LcmLog, RightFingerprintButBadBodyIsNamed) {
-  Bytes good = encode(sample(0, false, false));
+  Bytes good = test::lcm_encode(sample(0, false, false));
   const auto cut = temp_log("cut.lcmlog");
   LogWriter(cut).write_raw("IMU", Bytes(good.begin(), good.end() - 1));
   EXPECT_THAT(error_of([&] { read_lcm_imu_log(cut.string(), "IMU"); }),
@@ -570,7 +530,9 @@ TEST(LcmMemq, ImuSampleRoundTripsThroughTheRuntime) {
     EXPECT_EQ(got.delta_angle_rad[a], sent.delta_angle_rad[a]);
     EXPECT_EQ(got.delta_velocity_m_per_s[a], sent.delta_velocity_m_per_s[a]);
   }
-  EXPECT_EQ(std::memcmp(encode(got).data(), encode(sent).data(), encode(sent).size()), 0);
+  EXPECT_EQ(std::memcmp(test::lcm_encode(got).data(), test::lcm_encode(sent).data(),
+                        test::lcm_encode(sent).size()),
+            0);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Tests of io/lcm_type_definition.h: users' own LCM types read at run time. The test types in
 // tests/io/lcm_user_types/ are also compiled by lcm-gen (tests/CMakeLists.txt), so the
 // fingerprint is checked against the generated getHash() and the decoder against messages the
-// generated encode() wrote. Also: located errors for malformed definitions, robustness on
+// generated test::lcm_encode() wrote. Also: located errors for malformed definitions, robustness on
 // mutated definitions and corrupted messages, and read_lcm_imu_log with a user type on logs
 // written by lcm::LogFile.
 #include "io/lcm_type_definition.h"
@@ -34,13 +34,15 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/lcm_log.h"
+#include "lcm_test_support.h"
 #include "test_support.h"
 
 namespace imunoise::io {
 namespace {
 
 using ::testing::HasSubstr;
-using Bytes = std::vector<unsigned char>;
+using Bytes = test::LcmBytes;
+using LogWriter = test::LcmLogFileWriter;
 
 constexpr std::int64_t kEpochUs = 1'700'000'000'000'000;  // 2023-11-14, µs since the epoch
 constexpr std::int64_t kStepUs = 5'000;                   // 200 Hz
@@ -49,14 +51,6 @@ constexpr double kG = 9.80665;
 
 std::string type_file(const std::string& name) {
   return std::string(IMUNOISE_SOURCE_DIR) + "/tests/io/lcm_user_types/" + name;
-}
-
-template <typename T>
-Bytes encode(const T& message) {
-  Bytes out(static_cast<std::size_t>(message.getEncodedSize()));
-  EXPECT_EQ(message.encode(out.data(), 0, static_cast<int>(out.size())),
-            static_cast<int>(out.size()));
-  return out;
 }
 
 LcmFieldDecoder decoder_for(const std::string& file, const std::string& type) {
@@ -232,31 +226,6 @@ std::string write_definition(const std::string& name, const std::string& text) {
   return path.string();
 }
 
-/// Writes messages with lcm::LogFile (the writer lcm-logger uses).
-class LogWriter {
- public:
-  explicit LogWriter(const std::filesystem::path& path) {
-    file_.emplace(path.string(), "w");
-    EXPECT_TRUE(file_->good()) << path;
-  }
-  void close() { file_.reset(); }
-  void write_raw(const std::string& channel, Bytes data) {
-    lcm::LogEvent event{};
-    event.timestamp = kEpochUs;
-    event.channel = channel;
-    event.datalen = static_cast<std::int32_t>(data.size());
-    event.data = data.data();
-    ASSERT_EQ(file_->writeEvent(&event), 0);
-  }
-  template <typename T>
-  void write(const std::string& channel, const T& message) {
-    write_raw(channel, encode(message));
-  }
-
- private:
-  std::optional<lcm::LogFile> file_;
-};
-
 usertest::ins_t ins_sample(int i) {
   usertest::ins_t m{};
   m.utime = kEpochUs + i * kStepUs;
@@ -331,7 +300,7 @@ TEST(LcmTypeFingerprint, OurOwnImuSampleDefinitionMatchesItsGeneratedType) {
 
 TEST(LcmTypeFingerprint, EncodedMessagesStartWithIt) {
   Random r(7);
-  const Bytes bytes = encode(random_sample(r));
+  const Bytes bytes = test::lcm_encode(random_sample(r));
   LcmFieldDecoder decoder = decoder_for("usertest_nested.lcm", "sample_t");
   std::uint64_t head = 0;
   for (int i = 0; i < 8; ++i) head = (head << 8) | bytes[static_cast<std::size_t>(i)];
@@ -489,7 +458,7 @@ TEST(LcmTypeDecode, EveryPrimitiveRoundTripsExactly) {
       m.f64 = std::numeric_limits<double>::max();
       m.label = "";
     }
-    const auto got = decode_by_path(decoder, encode(m));
+    const auto got = decode_by_path(decoder, test::lcm_encode(m));
     EXPECT_EQ(got.size(), 14u);
     expect_integer(got, "i8", m.i8, LcmPrimitive::kInt8);
     expect_integer(got, "i16", m.i16, LcmPrimitive::kInt16);
@@ -513,7 +482,7 @@ TEST(LcmTypeDecode, FixedVariableAndMultiDimensionalArraysRoundTripExactly) {
   LcmFieldDecoder decoder = decoder_for("usertest_arrays.lcm", "arrays_t");
   for (int i = 0; i < 200; ++i) {
     const usertest::arrays_t m = random_arrays(r);
-    const auto got = decode_by_path(decoder, encode(m));
+    const auto got = decode_by_path(decoder, test::lcm_encode(m));
     const std::size_t n = static_cast<std::size_t>(m.n), k = static_cast<std::size_t>(m.m);
     EXPECT_EQ(got.size(), 3 + 3 + n + 6 + 3 * n + n * k + 2 * k + 2 + 2 * k +
                               static_cast<std::size_t>(m.count64) + 4);
@@ -557,7 +526,7 @@ TEST(LcmTypeDecode, NestedStructsRoundTripExactly) {
   LcmFieldDecoder decoder = decoder_for("usertest_nested.lcm", "usertest.sample_t");
   for (int i = 0; i < 200; ++i) {
     const usertest::sample_t m = random_sample(r);
-    const auto got = decode_by_path(decoder, encode(m));
+    const auto got = decode_by_path(decoder, test::lcm_encode(m));
     expect_integer(got, "utime", m.utime, LcmPrimitive::kInt64);
     for (std::size_t a = 0; a < 3; ++a) {
       expect_double(got, at("gyro.v", a), m.gyro.v[a]);
@@ -592,7 +561,7 @@ TEST(LcmTypeDecode, SelectedFieldsGiveTheSameValuesWithoutNames) {
   for (int i = 0; i < 100; ++i) {
     usertest::arrays_t m = random_arrays(r);
     const bool has_first = m.n > 0;
-    if (!arrays.decode(encode(m), values, error)) {
+    if (!arrays.decode(test::lcm_encode(m), values, error)) {
       // var[0] and mixed[2][0] exist only when n > 0: named in the failure.
       EXPECT_FALSE(has_first);
       EXPECT_THAT(error, HasSubstr("is not in this message"));
@@ -617,7 +586,7 @@ TEST(LcmTypeDecode, SelectedFieldsGiveTheSameValuesWithoutNames) {
   for (int i = 0; i < 100; ++i) {
     usertest::sample_t m = random_sample(r);
     const bool present = m.history.size() > 1 && !m.status.codes.empty();
-    ASSERT_EQ(nested.decode(encode(m), values, error), present) << error;
+    ASSERT_EQ(nested.decode(test::lcm_encode(m), values, error), present) << error;
     if (!present) continue;
     for (std::size_t a = 0; a < 3; ++a) EXPECT_EQ(values.values[gyro[a]], m.gyro.v[a]);
     EXPECT_EQ(values.values[history], m.history[1].v[2]);
@@ -654,7 +623,7 @@ TEST(LcmTypeDecode, TruncatedMessagesAreReportedAtEveryLength) {
   m.var = {1.0f, 2.0f};
   m.mixed.assign(3, {0.5, 0.25});
   m.var_var.assign(2, std::vector<std::int16_t>(static_cast<std::size_t>(m.m), 7));
-  const Bytes full = encode(m);
+  const Bytes full = test::lcm_encode(m);
   std::vector<LcmFieldValue> all;
   std::string error;
   for (std::size_t length = 0; length < full.size(); ++length) {
@@ -672,7 +641,7 @@ TEST(LcmTypeDecode, CorruptLengthsAndFingerprintsAreNamed) {
   LcmFieldDecoder decoder = decoder_for("usertest_arrays.lcm", "arrays_t");
   usertest::arrays_t m{};
   m.mixed.resize(3);
-  const Bytes good = encode(m);  // n = m = count64 = 0
+  const Bytes good = test::lcm_encode(m);  // n = m = count64 = 0
   std::vector<LcmFieldValue> all;
   std::string error;
   ASSERT_TRUE(decoder.decode_all(good, all, error)) << error;
@@ -697,7 +666,7 @@ TEST(LcmTypeDecode, CorruptLengthsAndFingerprintsAreNamed) {
   // writes.
   LcmFieldDecoder prims = decoder_for("usertest_primitives.lcm", "");
   usertest::primitives_t p{};
-  Bytes bytes = encode(p);
+  Bytes bytes = test::lcm_encode(p);
   const std::size_t label = 8 + 1 + 2 + 4 + 8 + 1 + 4 + 8;  // length of "label"
   ASSERT_EQ(bytes[label + 3], 1);
   bytes[label + 3] = 0;
@@ -716,8 +685,8 @@ TEST(LcmTypeDecode, NeverCrashesOnCorruptedMessages) {
   std::string error;
   int failures = 0;
   for (int round = 0; round < 500; ++round) {
-    Bytes a = encode(random_arrays(r));
-    Bytes b = encode(random_sample(r));
+    Bytes a = test::lcm_encode(random_arrays(r));
+    Bytes b = test::lcm_encode(random_sample(r));
     for (Bytes* bytes : {&a, &b}) {
       // Corrupt after the fingerprint (a wrong fingerprint stops at once), 1 to 4 bytes.
       const int edits = 1 + static_cast<int>(rng() % 4);
@@ -816,7 +785,7 @@ TEST(LcmUserType, ScalarFieldsInDegreesAndGWithNanosecondStamps) {
   ImuSampleColumns columns = decoder.make_columns();
   std::string error;
   for (int i = 0; i < 2; ++i)
-    ASSERT_TRUE(decoder.append(encode(message(i)), false, columns, error));
+    ASSERT_TRUE(decoder.append(test::lcm_encode(message(i)), false, columns, error));
   EXPECT_EQ(columns.utime_us, (std::vector<std::int64_t>{kEpochUs, kEpochUs + kStepUs + 1}));
 }
 
@@ -881,10 +850,10 @@ TEST(LcmUserType, UndecodableMessageAndUnknownChannelAreNamed) {
   {
     LogWriter writer(path);
     writer.write("INS", ins_sample(0));
-    const Bytes full = encode(ins_sample(1));
+    const Bytes full = test::lcm_encode(ins_sample(1));
     writer.write_raw("INS", Bytes(full.begin(), full.end() - 3));
   }
-  const std::string offset = std::to_string(28 + 3 + encode(ins_sample(0)).size());
+  const std::string offset = std::to_string(28 + 3 + test::lcm_encode(ins_sample(0)).size());
   EXPECT_THAT(test::error_of(
                   [&] { read_lcm_imu_log(path.string(), "INS", with_user_type(ins_user_type())); }),
               HasSubstr(path.string() + ": byte offset " + offset +
@@ -928,9 +897,9 @@ TEST(LcmUserType, ValueOverflowingWhenScaledIsNonFinite) {
   LcmUserImuDecoder decoder(t);
   ImuSampleColumns columns = decoder.make_columns();
   std::string error;
-  EXPECT_FALSE(decoder.append(encode(m), false, columns, error));
+  EXPECT_FALSE(decoder.append(test::lcm_encode(m), false, columns, error));
   EXPECT_EQ(error, "non-finite value in ax (Inf) after scaling to SI");
-  EXPECT_TRUE(decoder.append(encode(m), true, columns, error));
+  EXPECT_TRUE(decoder.append(test::lcm_encode(m), true, columns, error));
   EXPECT_EQ(columns.size(), 0u);
   EXPECT_EQ(columns.rows_dropped, 1);
 }

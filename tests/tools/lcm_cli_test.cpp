@@ -24,6 +24,7 @@
 
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
+#include "lcm_test_support.h"
 #include "test_support.h"
 
 namespace imunoise {
@@ -268,23 +269,12 @@ TEST_F(LcmCli, LiveReplayingTheLogPublishesTheModelOfAnalyze) {
 TEST_F(LcmCli, LiveCountsBadTrafficAndKeepsGoing) {
   const fs::path path = dir() / "messy.lcmlog";
   {
-    lcm::LogFile log(path.string(), "w");
-    ASSERT_TRUE(log.good());
+    test::LcmLogFileWriter log(path);
     std::int64_t event = 0;
-    const auto put = [&](const std::string& channel, const std::vector<unsigned char>& data) {
-      lcm::LogEvent e{};
-      e.eventnum = event++;
-      e.timestamp = 1'000'000 + 10'000 * e.eventnum;
-      e.channel = channel;
-      e.datalen = static_cast<std::int32_t>(data.size());
-      e.data = const_cast<unsigned char*>(data.data());
-      ASSERT_EQ(log.writeEvent(&e), 0);
+    const auto put = [&](const std::string& channel, const test::LcmBytes& data) {
+      log.write_raw(channel, data, 1'000'000 + 10'000 * event++);
     };
-    const auto encoded = [](const auto& m) {
-      std::vector<unsigned char> b(static_cast<std::size_t>(m.getEncodedSize()));
-      m.encode(b.data(), 0, static_cast<int>(b.size()));
-      return b;
-    };
+    const auto encoded = [](const auto& m) { return test::lcm_encode(m); };
     std::mt19937 rng(3);
     std::normal_distribution<double> noise(0.0, 1e-3);
     const auto good = [&](std::int64_t k) {
@@ -347,23 +337,12 @@ TEST_F(LcmCli, LiveStopsCleanlyOnSigterm) {
   EXPECT_THAT(r.out, HasSubstr("analyses 1, failed 0"));
 }
 
-/// Writes MESSAGES (each encoded) on CHANNEL with lcm::LogFile.
+/// Writes MESSAGES on CHANNEL with lcm::LogFile, 10 ms apart.
 template <typename T>
 void write_log(const fs::path& path, const std::string& channel, const std::vector<T>& messages) {
-  lcm::LogFile log(path.string(), "w");
-  ASSERT_TRUE(log.good());
+  test::LcmLogFileWriter log(path);
   std::int64_t n = 0;
-  for (const T& m : messages) {
-    std::vector<unsigned char> b(static_cast<std::size_t>(m.getEncodedSize()));
-    m.encode(b.data(), 0, static_cast<int>(b.size()));
-    lcm::LogEvent e{};
-    e.eventnum = n++;
-    e.timestamp = 1'700'000'000'000'000 + 10'000 * e.eventnum;
-    e.channel = channel;
-    e.datalen = static_cast<std::int32_t>(b.size());
-    e.data = b.data();
-    ASSERT_EQ(log.writeEvent(&e), 0);
-  }
+  for (const T& m : messages) log.write(channel, m, 1'700'000'000'000'000 + 10'000 * n++);
 }
 
 TEST_F(LcmCli, AUsersOwnTypeIsMappedByTheColumnFlags) {
