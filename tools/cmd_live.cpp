@@ -63,6 +63,7 @@ struct LiveCounts {
   std::int64_t mode_changes = 0;    ///< has_increments differing from the window's samples
   std::int64_t gaps = 0;            ///< intervals > 1.5 × the nominal period
   std::int64_t trimmed_by_cap = 0;  ///< oldest samples dropped by --max-samples
+  std::int64_t restarts = 0;        ///< window restarted after a run of rejected samples
   std::int64_t analyses = 0, failed_analyses = 0, skipped_analyses = 0;
   std::int64_t publish_failures = 0;
 };
@@ -80,7 +81,17 @@ std::string counts_text(const LiveCounts& c) {
          ", undecodable " + std::to_string(c.undecodable) + ", non-finite " +
          std::to_string(c.non_finite) + ", out of order " + std::to_string(c.out_of_order) +
          ", rate/increment switches " + std::to_string(c.mode_changes) + ", gaps " +
-         std::to_string(c.gaps) + ", dropped by --max-samples " + std::to_string(c.trimmed_by_cap);
+         std::to_string(c.gaps) + ", dropped by --max-samples " + std::to_string(c.trimmed_by_cap) +
+         ", restarts " + std::to_string(c.restarts);
+}
+
+/// Rejected samples in a row after which the stream counts as restarted.
+constexpr std::int64_t kRestartAfterRejections = 100;
+
+/// b − a [µs] in double: stamps come from the network and may be anything, so no int64
+/// subtraction that could overflow.
+double difference_us(std::int64_t a, std::int64_t b) {
+  return static_cast<double>(b) - static_cast<double>(a);
 }
 
 /// The rolling window and the message handler's state (touched only by the LCM thread that
@@ -88,7 +99,7 @@ std::string counts_text(const LiveCounts& c) {
 class LiveWindow {
  public:
   LiveWindow(double window_s, std::int64_t max_samples)
-      : window_us_(static_cast<std::int64_t>(window_s * 1e6)), max_samples_(max_samples) {}
+      : window_us_(window_s * 1e6), max_samples_(max_samples) {}
 
   void on_message(const unsigned char* data, std::size_t size) {
     ++counts_.received;
@@ -106,22 +117,30 @@ class LiveWindow {
     }
     if (!window_.empty()) {
       const imunoise::imu_sample_t& last = window_.back();
-      if (m.utime <= last.utime) {
-        ++counts_.out_of_order;
-        return;
-      }
-      if ((m.has_increments != 0) != (last.has_increments != 0)) {
-        ++counts_.mode_changes;
-        return;
-      }
-      if (nominal_period_us_ > 0 && (m.utime - last.utime) * 2 > nominal_period_us_ * 3) {
+      const bool out_of_order = m.utime <= last.utime;
+      const bool mode_change = (m.has_increments != 0) != (last.has_increments != 0);
+      if (out_of_order || mode_change) {
+        // A long run of rejections is not noise but a new stream (the sender restarted, its
+        // clock was reset, it switched to increments): start the window again from here
+        // rather than reject everything from now on. Every message is counted once: as
+        // rejected, or (the one that restarts the window) as accepted.
+        if (++consecutive_rejections_ < kRestartAfterRejections) {
+          ++(out_of_order ? counts_.out_of_order : counts_.mode_changes);
+          return;
+        }
+        window_.clear();
+        ++counts_.restarts;
+      } else if (nominal_period_us_ > 0 &&
+                 difference_us(last.utime, m.utime) > 1.5 * nominal_period_us_) {
         ++counts_.gaps;
       }
     }
+    consecutive_rejections_ = 0;
     window_.push_back(m);
     ++counts_.accepted;
     ++new_samples_;
-    while (window_.size() > 1 && window_.back().utime - window_.front().utime > window_us_) {
+    while (window_.size() > 1 &&
+           difference_us(window_.front().utime, window_.back().utime) > window_us_) {
       window_.pop_front();
     }
     while (static_cast<std::int64_t>(window_.size()) > max_samples_) {
@@ -132,9 +151,8 @@ class LiveWindow {
 
   /// Span of the window [s].
   double span_s() const {
-    return window_.size() < 2
-               ? 0.0
-               : static_cast<double>(window_.back().utime - window_.front().utime) * 1e-6;
+    return window_.size() < 2 ? 0.0
+                              : difference_us(window_.front().utime, window_.back().utime) * 1e-6;
   }
   std::int64_t last_utime() const { return window_.empty() ? 0 : window_.back().utime; }
   std::int64_t new_samples() const { return new_samples_; }
@@ -155,11 +173,12 @@ class LiveWindow {
   LiveCounts& counts() { return counts_; }
 
  private:
-  std::int64_t window_us_;
+  double window_us_;
   std::int64_t max_samples_;
   std::deque<imunoise::imu_sample_t> window_;
   std::int64_t new_samples_ = 0;
   std::int64_t nominal_period_us_ = 0;
+  std::int64_t consecutive_rejections_ = 0;
   LiveCounts counts_;
 };
 
@@ -264,8 +283,11 @@ void run_live(const LiveArgs& args) {
     if (running.valid() && running.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
       finish_analysis();
     }
+    // After a restart the stamps may lie before the last analysis: analyse when the window
+    // alone spans --every again.
+    const double since_last_s = difference_us(analysed_until_us, window.last_utime()) * 1e-6;
     const bool due = window.new_samples() > 0 && window.span_s() >= every_s &&
-                     static_cast<double>(window.last_utime() - analysed_until_us) * 1e-6 >= every_s;
+                     (since_last_s >= every_s || since_last_s < 0.0);
     if (due) {
       if (running.valid()) {
         ++counts.skipped_analyses;  // the previous one still runs; the next check retries

@@ -309,6 +309,9 @@ TEST_F(LcmCli, LiveCountsBadTrafficAndKeepsGoing) {
       }
       if (k == 700) put("OTHER", {1, 2, 3});  // other channels are not ours to judge
     }
+    // The sender restarts with its clock back at 0: after 100 rejected samples live starts
+    // a new window instead of rejecting the new stream for ever.
+    for (std::int64_t k = 0; k < 2000; ++k) put("IMU", encoded(good(k - 200'000)));
   }
   const auto r = test::run_imunoise(
       "live --channel IMU --lcm-url " + shell_quoted("file://" + path.string() + "?speed=0") +
@@ -316,10 +319,12 @@ TEST_F(LcmCli, LiveCountsBadTrafficAndKeepsGoing) {
       shell_quoted("file://" + (dir() / "messy_out.lcmlog").string() + "?mode=w") +
       " --every 10s --bootstrap 0 -o " + shell_quoted(dir() / "messy"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("received 3006, accepted 3000, undecodable 2, non-finite 1, "
-                               "out of order 2, rate/increment switches 1"));
+  EXPECT_THAT(r.out, HasSubstr("received 5006, accepted 4901, undecodable 2, non-finite 1, "
+                               "out of order 101, rate/increment switches 1"));
+  EXPECT_THAT(r.out, HasSubstr("restarts 1"));
   EXPECT_TRUE(fs::exists(dir() / "messy/model.yaml"));
-  EXPECT_EQ(io::load_model_yaml((dir() / "messy/model.yaml").string()).samples, 3000);
+  // The last model is of the new stream: 2000 − 99 rejected before the restart.
+  EXPECT_EQ(io::load_model_yaml((dir() / "messy/model.yaml").string()).samples, 1901);
 }
 
 TEST_F(LcmCli, LiveStopsCleanlyOnSigterm) {
