@@ -196,6 +196,14 @@ void run_live(const LiveArgs& args) {
   if (args.queue_capacity < 1) throw InputError("--queue-capacity: expected at least 1");
   if (!args.output_dir.empty()) std::filesystem::create_directories(args.output_dir);
 
+  const bool reads_a_log = args.url.rfind("file://", 0) == 0 &&
+                           args.url.find("mode=w") == std::string::npos &&
+                           args.url.find("mode=a") == std::string::npos;
+  if (reads_a_log && args.publish_url.empty()) {
+    throw InputError("--lcm-url '" + args.url +
+                     "' replays a log, which cannot be published to: give --publish-url (e.g. "
+                     "'file:///tmp/estimates.lcmlog?mode=w' or the udpm:// bus)");
+  }
   LcmBus bus(args.url);
   // A separate output bus when asked (e.g. input replayed from a file:// log, which cannot be
   // published to).
@@ -352,7 +360,8 @@ void register_live_command(CLI::App& app) {
   cmd->footer(
       "Examples:\n"
       "  imunoise live --channel IMU --window 30min --every 60s\n"
-      "  imunoise live --channel IMU --lcm-url 'file:///data/imu.lcmlog?speed=0' --every 10min\n"
+      "  imunoise live --channel IMU --lcm-url 'file:///data/imu.lcmlog?speed=0' \\\n"
+      "      --publish-url 'file:///data/estimates.lcmlog?mode=w' --every 10min -o out/live\n"
       "Stops on SIGINT/SIGTERM after one last analysis of the data that arrived since the\n"
       "previous one; the counts of bad or dropped messages are printed on exit.");
   cmd->callback([args] { run_live(*args); });

@@ -231,6 +231,10 @@ TEST_F(LcmCli, PublishRejectsBadInputBeforeSendingAnything) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("bad_allan.csv:2"));
   EXPECT_FALSE(fs::exists(log));
+  const auto replay = test::run_imunoise(
+      "live --lcm-url " + shell_quoted("file://" + (dir() / "rec.lcmlog").string() + "?speed=0"));
+  EXPECT_EQ(replay.exit_code, 2);
+  EXPECT_THAT(replay.err, HasSubstr("cannot be published to: give --publish-url"));
   const auto url = test::run_imunoise("publish " + shell_quoted(dir() / "a_log/model.yaml") +
                                       " --lcm-url 'nosuch://x'");
   EXPECT_EQ(url.exit_code, 2);
