@@ -217,8 +217,69 @@ class ChannelTally {
   std::size_t last_ = 0;
 };
 
-/// "'IMU' (imunoise.imu_sample_t, 100 events), 'X' (unknown type, fingerprint 0x…, 2 events)"
-std::string describe_channels(const std::vector<LcmLogChannel>& channels) {
+/// Scans the whole log; every event on `channel` must carry `fingerprint` (else "wrong type on
+/// channel …: expected EXPECTED, found …") and is passed to on_message(scanner). A channel
+/// the log does not hold is an error listing the channels it does.
+template <typename OnMessage>
+void read_channel(const std::string& path, const std::string& channel, std::uint64_t fingerprint,
+                  const std::string& expected, OnMessage on_message) {
+  EventScanner scanner(path);
+  ChannelTally tally;
+  while (scanner.next()) {
+    const auto found = scanner.fingerprint();
+    tally.add(scanner.channel(), found);
+    if (scanner.channel() != channel) continue;
+    if (found != fingerprint) {
+      std::string text;
+      if (found) {
+        const std::string name = type_name_of(*found);
+        text = "fingerprint " + lcm_fingerprint_text(*found) +
+               (name.empty() ? " (not one of imunoise's types)" : " (" + name + ")");
+      } else {
+        text = "a " + std::to_string(scanner.data().size()) +
+               "-byte message, too short for a fingerprint";
+      }
+      scanner.fail("wrong type on channel " + printable(channel) + ": expected " + expected +
+                   ", found " + text);
+    }
+    on_message(scanner);
+  }
+  const auto listed = tally.take();
+  if (std::none_of(listed.begin(), listed.end(),
+                   [&](const LcmLogChannel& c) { return c.name == channel; })) {
+    throw InputError(located_message(
+        path, 0, 0,
+        "channel " + printable(channel) + " not found; " + describe_lcm_log_channels(listed)));
+  }
+}
+
+/// read_lcm_imu_log for a user's own message type (options.user_type): the same scan, the
+/// messages decoded by LcmUserImuDecoder.
+Recording read_user_type_log(const std::string& path, const std::string& channel,
+                             const LcmReadOptions& options) {
+  LcmUserImuDecoder decoder(*options.user_type);
+  const std::string expected = decoder.type_name() + " (fingerprint " +
+                               lcm_fingerprint_text(decoder.fingerprint()) + ", from " +
+                               decoder.definition_path() + ")";
+  ImuSampleColumns samples = decoder.make_columns();
+  std::string error;
+  read_channel(path, channel, decoder.fingerprint(), expected, [&](const EventScanner& scanner) {
+    if (!decoder.append(scanner.data(), options.drop_non_finite, samples, error)) {
+      scanner.fail(error + " (channel " + printable(channel) + ", event number " +
+                   std::to_string(scanner.event_number()) + ")");
+    }
+  });
+  return recording_from_imu_samples(std::move(samples), path, channel);
+}
+
+}  // namespace
+
+std::string lcm_fingerprint_text(std::uint64_t fingerprint) {
+  return hex32(static_cast<std::uint32_t>(fingerprint >> 32)) +
+         hex32(static_cast<std::uint32_t>(fingerprint)).substr(2);
+}
+
+std::string describe_lcm_log_channels(const std::vector<LcmLogChannel>& channels) {
   if (channels.empty()) return "the log holds no events";
   std::string out = "the log holds ";
   for (std::size_t i = 0; i < channels.size(); ++i) {
@@ -239,54 +300,6 @@ std::string describe_channels(const std::vector<LcmLogChannel>& channels) {
   return out;
 }
 
-/// read_lcm_imu_log for a user's own message type (options.user_type): the same scan, the
-/// messages decoded by LcmUserImuDecoder.
-Recording read_user_type_log(const std::string& path, const std::string& channel,
-                             const LcmReadOptions& options) {
-  LcmUserImuDecoder decoder(*options.user_type);
-  const std::string expected = decoder.type_name() + " (fingerprint " +
-                               lcm_fingerprint_text(decoder.fingerprint()) + ", from " +
-                               decoder.definition_path() + ")";
-  EventScanner scanner(path);
-  ChannelTally tally;
-  ImuSampleColumns samples = decoder.make_columns();
-  std::string error;
-  while (scanner.next()) {
-    const auto fingerprint = scanner.fingerprint();
-    tally.add(scanner.channel(), fingerprint);
-    if (scanner.channel() != channel) continue;
-    if (fingerprint != decoder.fingerprint()) {
-      std::string found = "a " + std::to_string(scanner.data().size()) +
-                          "-byte message, too short for a fingerprint";
-      if (fingerprint) {
-        const std::string name = type_name_of(*fingerprint);
-        found = "fingerprint " + lcm_fingerprint_text(*fingerprint) +
-                (name.empty() ? "" : " (" + name + ")");
-      }
-      scanner.fail("wrong type on channel " + printable(channel) + ": expected " + expected +
-                   ", found " + found);
-    }
-    if (!decoder.append(scanner.data(), options.drop_non_finite, samples, error)) {
-      scanner.fail(error + " (channel " + printable(channel) + ", event number " +
-                   std::to_string(scanner.event_number()) + ")");
-    }
-  }
-  const auto listed = tally.take();
-  if (std::none_of(listed.begin(), listed.end(),
-                   [&](const LcmLogChannel& c) { return c.name == channel; })) {
-    throw InputError(located_message(
-        path, 0, 0, "channel " + printable(channel) + " not found; " + describe_channels(listed)));
-  }
-  return recording_from_imu_samples(std::move(samples), path, channel);
-}
-
-}  // namespace
-
-std::string lcm_fingerprint_text(std::uint64_t fingerprint) {
-  return hex32(static_cast<std::uint32_t>(fingerprint >> 32)) +
-         hex32(static_cast<std::uint32_t>(fingerprint)).substr(2);
-}
-
 std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path) {
   EventScanner scanner(path);
   ChannelTally tally;
@@ -298,30 +311,11 @@ Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
                            const LcmReadOptions& options) {
   if (options.user_type) return read_user_type_log(path, channel, options);
   using imunoise::imu_sample_t;
-  const auto expected = static_cast<std::uint64_t>(imu_sample_t::getHash());
+  const auto fingerprint = static_cast<std::uint64_t>(imu_sample_t::getHash());
   const std::string expected_name = "imunoise.imu_sample_t";
-
-  EventScanner scanner(path);
-  ChannelTally tally;
   ImuSampleColumns samples;
   std::optional<bool> increments;
-  while (scanner.next()) {
-    const auto fingerprint = scanner.fingerprint();
-    tally.add(scanner.channel(), fingerprint);
-    if (scanner.channel() != channel) continue;
-    if (fingerprint != expected) {
-      std::string found;
-      if (fingerprint) {
-        found = "fingerprint " + lcm_fingerprint_text(*fingerprint);
-        const std::string name = type_name_of(*fingerprint);
-        found += name.empty() ? " (not one of imunoise's types)" : " (" + name + ")";
-      } else {
-        found = "a " + std::to_string(scanner.data().size()) +
-                "-byte message, too short for a fingerprint";
-      }
-      scanner.fail("wrong type on channel " + printable(channel) + ": expected " + expected_name +
-                   " (fingerprint " + lcm_fingerprint_text(expected) + "), found " + found);
-    }
+  const auto on_message = [&](const EventScanner& scanner) {
     const auto data = scanner.data();
     if (data.size() > static_cast<std::size_t>(INT_MAX)) {
       scanner.fail("message of " + std::to_string(data.size()) + " bytes is too large");
@@ -354,19 +348,13 @@ Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
       }
       samples.non_finite_dropped += bad;
       ++samples.rows_dropped;
-      continue;
+      return;
     }
     append_imu_sample(m, samples);
-  }
-
-  const auto listed = tally.take();
-  const bool found = std::any_of(listed.begin(), listed.end(),
-                                 [&](const LcmLogChannel& c) { return c.name == channel; });
-  if (!found) {
-    throw InputError(located_message(
-        path, 0, 0, "channel " + printable(channel) + " not found; " + describe_channels(listed)));
-  }
-
+  };
+  read_channel(path, channel, fingerprint,
+               expected_name + " (fingerprint " + lcm_fingerprint_text(fingerprint) + ")",
+               on_message);
   return recording_from_imu_samples(std::move(samples), path, channel);
 }
 

@@ -42,6 +42,10 @@ struct LcmLogChannel {
 /// the file cannot be read or is malformed anywhere.
 std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path);
 
+/// "the log holds 'IMU' (imunoise.imu_sample_t, 100 events), 'X' (unknown type, fingerprint
+/// 0x…, 2 events)" — how error messages list a log's channels.
+std::string describe_lcm_log_channels(const std::vector<LcmLogChannel>& channels);
+
 /// "0x" and 16 lower-case hex digits, as fingerprints are shown in messages.
 std::string lcm_fingerprint_text(std::uint64_t fingerprint);
 

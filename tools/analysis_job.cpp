@@ -19,13 +19,6 @@ namespace imunoise::tools {
 
 namespace {
 
-std::string fixed(double value, int digits = 4) {
-  std::ostringstream out;
-  out.precision(digits);
-  out << value;
-  return out.str();
-}
-
 pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau0_s) {
   if (!(s.confidence > 0.0 && s.confidence < 1.0)) {
     throw InputError("--confidence: expected a level in (0, 1), got " +
@@ -88,7 +81,8 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   const io::TimingReport& t = report.timing;
   if (t.gap_count > 0) {
     out.push_back(std::to_string(t.gap_count) + " time-stamp gap(s), longest " +
-                  fixed(t.longest_gap_s) + " s, about " + std::to_string(t.missing_samples) +
+                  significant_number_text(t.longest_gap_s) + " s, about " +
+                  std::to_string(t.missing_samples) +
                   " samples missing; the analysis assumes uniform sampling");
   }
   if (t.non_monotonic_count > 0) {
@@ -99,8 +93,9 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   }
   if (t.has_timestamps && t.median_interval_s > 0.0 &&
       t.jitter_rms_s > 0.01 * t.median_interval_s) {
-    out.push_back("time-stamp jitter " + fixed(t.jitter_rms_s) + " s RMS (" +
-                  fixed(100.0 * t.jitter_rms_s / t.median_interval_s, 3) + " % of the interval)");
+    out.push_back("time-stamp jitter " + significant_number_text(t.jitter_rms_s) + " s RMS (" +
+                  significant_number_text(100.0 * t.jitter_rms_s / t.median_interval_s, 3) +
+                  " % of the interval)");
   }
   if (report.rows_dropped > 0) {
     out.push_back(std::to_string(report.rows_dropped) + " row(s) with NaN/Inf dropped");

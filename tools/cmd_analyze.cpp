@@ -62,13 +62,6 @@ struct AnalyzeArgs {
   std::string curves_channel = "ALLAN_CURVE";
 };
 
-std::string fixed(double value, int digits = 4) {
-  std::ostringstream out;
-  out.precision(digits);
-  out << value;
-  return out.str();
-}
-
 /// A coefficient in the unit people read on datasheets, with that unit's name.
 struct DisplayUnit {
   double factor;  ///< SI value × factor = display value
@@ -204,18 +197,20 @@ void write_psd_csv(const std::string& path, const std::vector<pipeline::AxisAnal
 /// "1.234e-02 [1.1e-02, 1.4e-02]" or "not identified (< 3e-4)".
 std::string estimate_text(const models::Estimate& e, const DisplayUnit& unit) {
   if (!e.identified) {
-    if (e.ci_high > 0.0) return "- (< " + fixed(e.ci_high * unit.factor, 2) + ")";
+    if (e.ci_high > 0.0) return "- (< " + significant_number_text(e.ci_high * unit.factor, 2) + ")";
     return "-";
   }
-  return fixed(e.value * unit.factor, 4) + " [" + fixed(e.ci_low * unit.factor, 3) + ", " +
-         fixed(e.ci_high * unit.factor, 3) + "]";
+  return significant_number_text(e.value * unit.factor, 4) + " [" +
+         significant_number_text(e.ci_low * unit.factor, 3) + ", " +
+         significant_number_text(e.ci_high * unit.factor, 3) + "]";
 }
 
 void print_summary(const models::NoiseModel& model,
                    const std::optional<std::array<NoiseCoefficients, 6>>& truth) {
   std::cout << "imunoise analyze: " << model.source << " — " << model.samples << " samples at "
-            << fixed(model.sample_rate_hz, 6) << " Hz (" << fixed(model.duration_s / 3600.0, 4)
-            << " h); coefficients with " << fixed(100.0 * model.confidence, 3)
+            << significant_number_text(model.sample_rate_hz, 6) << " Hz ("
+            << significant_number_text(model.duration_s / 3600.0, 4) << " h); coefficients with "
+            << significant_number_text(100.0 * model.confidence, 3)
             << " % intervals, '-' = not identified (upper bound);\n"
             << "ieee952 = the graphical slope read-off of the OADEV curve, for traceability\n";
   for (bool gyro : {true, false}) {
@@ -229,7 +224,8 @@ void print_summary(const models::NoiseModel& model,
         const models::Estimate& e = axis.terms[static_cast<std::size_t>(term)];
         std::cout << "    " << axis.name << ": " << estimate_text(e, unit);
         const double slope = axis.readoff.slope[static_cast<std::size_t>(term)];
-        if (slope > 0.0) std::cout << "   ieee952 " << fixed(slope * unit.factor, 4);
+        if (slope > 0.0)
+          std::cout << "   ieee952 " << significant_number_text(slope * unit.factor, 4);
         if (truth) {
           const std::size_t channel = static_cast<std::size_t>(
               std::find(kImuChannelNames.begin(), kImuChannelNames.end(), axis.name) -
@@ -237,7 +233,7 @@ void print_summary(const models::NoiseModel& model,
           if (channel < 6) {
             const double true_value = models::coefficient((*truth)[channel], term);
             const bool inside = true_value >= e.ci_low && true_value <= e.ci_high;
-            std::cout << "   true " << fixed(true_value * unit.factor, 4)
+            std::cout << "   true " << significant_number_text(true_value * unit.factor, 4)
                       << (inside ? "  (inside)" : "  (OUTSIDE)");
           }
         }

@@ -54,13 +54,6 @@ struct DriftArgs {
   std::string output;
 };
 
-std::string fixed(double v, int digits = 4) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
-
 void run_drift(DriftArgs a) {
   if (a.location.size() != 3)
     throw InputError("--location: expected LAT,LON,H (deg, deg, m), got " +
@@ -223,8 +216,9 @@ void run_drift(DriftArgs a) {
   if (mc) j["monte_carlo"] = {{"runs", mc->runs}, {"seed", a.seed}};
   io::write_file_atomically((dir / "drift_summary.json").string(), j.dump(2) + "\n");
 
-  std::cout << "drift: " << drift.segments.size() << " segments of " << fixed(o.align_s)
-            << " s alignment + " << fixed(o.navigation_s) << " s navigation, height hold\n";
+  std::cout << "drift: " << drift.segments.size() << " segments of "
+            << significant_number_text(o.align_s) << " s alignment + "
+            << significant_number_text(o.navigation_s) << " s navigation, height hold\n";
   if (!a.location_given)
     std::cout << "location not given: assumed 45 deg N, 0 deg E, 0 m (--location LAT,LON,H)\n";
   std::cout << "heading: " << drift.heading_note << "\n";
@@ -234,16 +228,22 @@ void run_drift(DriftArgs a) {
                "     coverage 1/2/3 sigma (exp. 39/86/99 %)"
             << (mc ? "   MC RMS" : "") << "\n";
   for (const auto& c : drift.consistency) {
-    std::cout << "  " << fixed(c.time_s) << " s   " << fixed(c.predicted_drms_m) << " m   "
-              << fixed(c.actual_rms_m) << " m   " << fixed(c.rms_ratio, 3) << " ["
-              << fixed(c.rms_ratio_ci_low, 3) << ", " << fixed(c.rms_ratio_ci_high, 3) << "]   "
-              << fixed(c.mean_nees, 3) << " [" << fixed(c.nees_band_low, 3) << ", "
-              << fixed(c.nees_band_high, 3) << "] " << (c.nees_inside ? "inside" : "OUTSIDE")
-              << "   " << fixed(100 * c.coverage[0], 3) << "/" << fixed(100 * c.coverage[1], 3)
-              << "/" << fixed(100 * c.coverage[2], 3) << " %";
+    std::cout << "  " << significant_number_text(c.time_s) << " s   "
+              << significant_number_text(c.predicted_drms_m) << " m   "
+              << significant_number_text(c.actual_rms_m) << " m   "
+              << significant_number_text(c.rms_ratio, 3) << " ["
+              << significant_number_text(c.rms_ratio_ci_low, 3) << ", "
+              << significant_number_text(c.rms_ratio_ci_high, 3) << "]   "
+              << significant_number_text(c.mean_nees, 3) << " ["
+              << significant_number_text(c.nees_band_low, 3) << ", "
+              << significant_number_text(c.nees_band_high, 3) << "] "
+              << (c.nees_inside ? "inside" : "OUTSIDE") << "   "
+              << significant_number_text(100 * c.coverage[0], 3) << "/"
+              << significant_number_text(100 * c.coverage[1], 3) << "/"
+              << significant_number_text(100 * c.coverage[2], 3) << " %";
     if (mc) {
       const auto i = static_cast<std::size_t>(std::llround(c.time_s / o.output_step_s)) - 1;
-      std::cout << "   " << fixed(mc->radial_rms_m[i]) << " m";
+      std::cout << "   " << significant_number_text(mc->radial_rms_m[i]) << " m";
     }
     std::cout << "\n";
   }

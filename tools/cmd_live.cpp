@@ -68,14 +68,6 @@ struct LiveCounts {
   std::int64_t publish_failures = 0;
 };
 
-/// A number with 6 significant digits, for status lines.
-std::string short_number(double v) {
-  std::ostringstream out;
-  out.precision(6);
-  out << v;
-  return out.str();
-}
-
 std::string counts_text(const LiveCounts& c) {
   return "received " + std::to_string(c.received) + ", accepted " + std::to_string(c.accepted) +
          ", undecodable " + std::to_string(c.undecodable) + ", non-finite " +
@@ -265,8 +257,8 @@ void run_live(const LiveArgs& args) {
       }
       log("published model " + std::to_string(counts.analyses) + " (" +
           std::to_string(result.model.samples) + " samples, " +
-          short_number(result.model.duration_s) + " s at " +
-          short_number(result.model.sample_rate_hz) + " Hz); " + counts_text(counts));
+          significant_number_text(result.model.duration_s, 6) + " s at " +
+          significant_number_text(result.model.sample_rate_hz, 6) + " Hz); " + counts_text(counts));
     } catch (const InputError& e) {
       ++counts.failed_analyses;
       log(std::string("analysis failed, will retry with more data: ") + e.what());

@@ -16,26 +16,18 @@ namespace {
 /// The channel to read when --channel is not given: the log's only imu_sample_t channel.
 std::string default_channel(const std::string& path) {
   const std::vector<io::LcmLogChannel> channels = io::list_lcm_log_channels(path);
-  std::string found;
-  int count = 0;
-  std::string listing;
+  std::vector<std::string> found;
   for (const io::LcmLogChannel& c : channels) {
-    if (!listing.empty()) listing += ", ";
-    listing += "'" + c.name + "' (" + (c.type_name.empty() ? "other type" : c.type_name) + ", " +
-               std::to_string(c.event_count) + " events)";
-    if (c.type_name == "imunoise.imu_sample_t") {
-      found = c.name;
-      ++count;
-    }
+    if (c.type_name == "imunoise.imu_sample_t") found.push_back(c.name);
   }
-  if (count == 1) return found;
+  if (found.size() == 1) return found.front();
   throw InputError(located_message(
       path, 0, 0,
-      std::string(count == 0 ? "no imunoise.imu_sample_t channel"
-                             : "several imunoise.imu_sample_t channels") +
+      std::string(found.empty() ? "no imunoise.imu_sample_t channel"
+                                : "several imunoise.imu_sample_t channels") +
           " in this LCM log; give --channel NAME (and --lcm-type FILE.lcm for an IMU message "
-          "type of your own); the log holds " +
-          (listing.empty() ? "no events" : listing)));
+          "type of your own); " +
+          io::describe_lcm_log_channels(channels)));
 }
 
 /// With --lcm-type and no --channel: the log's only channel carrying that type.
