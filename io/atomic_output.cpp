@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <system_error>
 
 #include "common/errors.h"
@@ -52,6 +53,17 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   AtomicOutputFile file(path);
   file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
   file.commit();
+}
+
+void create_output_directory(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (ec) {
+    throw InputError(path + ": cannot create the output directory: " + ec.message());
+  }
+  if (!std::filesystem::is_directory(path, ec)) {
+    throw InputError(path + ": cannot create the output directory: a file of that name exists");
+  }
 }
 
 }  // namespace imunoise::io

@@ -38,4 +38,9 @@ class AtomicOutputFile {
 /// Convenience: atomically replaces PATH with CONTENT.
 void write_file_atomically(const std::string& path, const std::string& content);
 
+/// Creates the output directory PATH and its parents if needed. Throws imunoise::InputError
+/// "PATH: cannot create the output directory: REASON" when it cannot (e.g. PATH or a parent is
+/// an existing file, or permission is denied).
+void create_output_directory(const std::string& path);
+
 }  // namespace imunoise::io

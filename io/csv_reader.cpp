@@ -61,7 +61,14 @@ class LineSource {
     do {
       fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     } while (fd_ < 0 && errno == EINTR);
-    if (fd_ < 0) throw InputError(located_message(path, 0, 0, "cannot open: " + errno_text(errno)));
+    if (fd_ < 0) {
+      const int err = errno;
+      std::string what = "cannot open: ";
+      what.append(errno_text(err));
+      if (err == ENOENT)
+        what.append(" (check the path; relative paths start at the current directory)");
+      throw InputError(located_message(path, 0, 0, what));
+    }
     struct stat st {};
     if (::fstat(fd_, &st) == 0) {
       if (S_ISDIR(st.st_mode)) {
@@ -81,6 +88,9 @@ class LineSource {
 
   std::size_t size_hint() const { return size_hint_; }
   bool at_eof() const { return eof_; }
+  /// Reports the bytes read after each block from now on (regular files only: the size is
+  /// the total).
+  void set_progress(const ProgressCallback* progress) { progress_ = progress; }
 
   /// The unconsumed bytes, after reading until at least `bytes` are buffered or EOF.
   std::string_view peek(std::size_t bytes) {
@@ -145,6 +155,12 @@ class LineSource {
       eof_ = true;
     } else {
       end_ += static_cast<std::size_t>(got);
+      bytes_read_ += static_cast<std::size_t>(got);
+      if (progress_ != nullptr && size_hint_ > 0) {
+        report_progress(*progress_, "reading",
+                        static_cast<std::int64_t>(std::min(bytes_read_, size_hint_)),
+                        static_cast<std::int64_t>(size_hint_));
+      }
     }
   }
 
@@ -157,6 +173,8 @@ class LineSource {
   std::size_t end_ = 0;   // end of the valid bytes
   bool eof_ = false;
   std::int64_t line_number_ = 0;
+  std::size_t bytes_read_ = 0;
+  const ProgressCallback* progress_ = nullptr;  // not owned; set only during TableReader::read
 };
 
 bool is_content(std::string_view line) {
@@ -539,10 +557,17 @@ std::size_t TableReader::resolve_column(std::string_view selector) const {
   impl_->fail(layout.header_line, 0, what);
 }
 
-TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_non_finite) {
+TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_non_finite,
+                            const ProgressCallback& progress) {
   Impl& im = *impl_;
   if (im.consumed) throw std::logic_error("TableReader::read called twice");
   im.consumed = true;
+  // Only while this call runs: the callback is the caller's.
+  struct ProgressScope {
+    LineSource& source;
+    ~ProgressScope() { source.set_progress(nullptr); }
+  } progress_scope{im.source};
+  if (progress) im.source.set_progress(&progress);
   const TableLayout& layout = im.layout;
   const std::size_t ncols = layout.column_count;
   const Delimiter delimiter = layout.delimiter;
@@ -828,7 +853,8 @@ std::optional<GroupMapping<Unit>> map_group(
 
 }  // namespace
 
-Recording read_recording(const std::string& path, const InputConfig& config) {
+Recording read_recording(const std::string& path, const InputConfig& config,
+                         const ProgressCallback& progress) {
   TableReader reader(path, config.delimiter.value_or(Delimiter::kAuto));
   const TableLayout& layout = reader.layout();
 
@@ -903,7 +929,7 @@ Recording read_recording(const std::string& path, const InputConfig& config) {
     }
   }
 
-  TableData data = reader.read(requests, config.drop_non_finite.value_or(false));
+  TableData data = reader.read(requests, config.drop_non_finite.value_or(false), progress);
   const std::size_t n = data.columns.front().size();
 
   Recording rec;

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/progress.h"
 #include "io/input_config.h"
 #include "io/recording.h"
 
@@ -89,7 +90,10 @@ class TableReader {
   /// Reads all rows once. NaN/Inf: InputError, or with drop_non_finite the row is dropped and
   /// counted. Throws InputError at the first malformed token or wrong column count. A column
   /// may be requested twice only with the same relative_to_first (else invalid_argument).
-  TableData read(std::span<const ColumnRequest> columns, bool drop_non_finite);
+  /// PROGRESS (optional) gets ("reading", bytes read, file size) after each block read from a
+  /// regular file.
+  TableData read(std::span<const ColumnRequest> columns, bool drop_non_finite,
+                 const ProgressCallback& progress = {});
 
  private:
   struct Impl;
@@ -123,7 +127,9 @@ Series read_series(const std::string& path, const SeriesReadOptions& options);
 
 /// Reads an IMU recording per `config` (see InputConfig for the automatic mapping) and
 /// converts it to SI: rates in rad/s and m/s², increments divided by the sample period.
-/// Fills the sampling report; non-monotonic time stamps are reported, not fatal.
-Recording read_recording(const std::string& path, const InputConfig& config);
+/// Fills the sampling report; non-monotonic time stamps are reported, not fatal. PROGRESS
+/// (optional) follows the bytes read, as in TableReader::read.
+Recording read_recording(const std::string& path, const InputConfig& config,
+                         const ProgressCallback& progress = {});
 
 }  // namespace imunoise::io

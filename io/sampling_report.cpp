@@ -46,6 +46,44 @@ double approximate_gcd(double a, double b) {
 
 }  // namespace
 
+namespace {
+
+/// The histogram of the regular intervals (see IntervalHistogram); at least one exists.
+IntervalHistogram interval_histogram(const std::vector<double>& intervals, double median,
+                                     double gap_limit) {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (double d : intervals) {
+    if (d > 0.0 && d <= gap_limit) {
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  }
+  IntervalHistogram h;
+  // Stamps parsed as decimal seconds differ from the true step by ~1e-14 s: not jitter.
+  const bool one_bin = hi - lo <= 1e-9 * median;
+  const int bins = one_bin ? 1 : kIntervalHistogramBins;
+  const double width = one_bin ? 1e-6 * median : (hi - lo) / bins;
+  const double first = one_bin ? median - 0.5 * width : lo;
+  h.counts.assign(static_cast<std::size_t>(bins), 0);
+  for (int b = 0; b < bins; ++b) {
+    h.bin_low_s.push_back(first + b * width);
+    h.bin_high_s.push_back(b + 1 == bins ? (one_bin ? first + width : hi)
+                                         : first + (b + 1) * width);
+  }
+  for (double d : intervals) {
+    if (!(d > 0.0 && d <= gap_limit)) continue;
+    const auto b = one_bin
+                       ? 0
+                       : std::clamp<std::int64_t>(
+                             static_cast<std::int64_t>(std::floor((d - lo) / width)), 0, bins - 1);
+    ++h.counts[static_cast<std::size_t>(b)];
+  }
+  return h;
+}
+
+}  // namespace
+
 TimingReport analyze_timing(std::span<const double> time_s, const SamplingOptions& options) {
   TimingReport t;
   t.has_timestamps = true;
@@ -79,6 +117,9 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
       if (t.duplicate_count++ == 0) t.first_duplicate = locate(i + 1, options);
     } else if (median > 0.0 && d > gap_limit) {
       if (t.gap_count++ == 0) t.first_gap = locate(i + 1, options);
+      if (t.gaps.size() < kMaxListedGaps) {
+        t.gaps.push_back(GapRecord{locate(i + 1, options), time_s[i] - time_s[0], d});
+      }
       t.longest_gap_s = std::max(t.longest_gap_s, d);
       t.missing_samples += std::max<std::int64_t>(0, std::llround(d / median) - 1);
     } else {
@@ -89,6 +130,7 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
     }
   }
   if (jitter_count > 0) t.jitter_rms_s = std::sqrt(sum_sq / static_cast<double>(jitter_count));
+  if (jitter_count > 0) t.interval_histogram = interval_histogram(intervals, median, gap_limit);
   return t;
 }
 
@@ -354,6 +396,15 @@ nlohmann::ordered_json sampling_report_to_json(const SamplingReport& report,
   j["first_duplicate"] = location_json(t.first_duplicate);
   j["jitter_rms_s"] = t.jitter_rms_s;
   j["jitter_max_s"] = t.jitter_max_s;
+  j["interval_histogram"] = {{"bin_low_s", t.interval_histogram.bin_low_s},
+                             {"bin_high_s", t.interval_histogram.bin_high_s},
+                             {"counts", t.interval_histogram.counts}};
+  nlohmann::ordered_json gaps = nlohmann::ordered_json::array();
+  for (const GapRecord& g : t.gaps) {
+    gaps.push_back(
+        {{"after", location_json(g.after)}, {"start_s", g.start_s}, {"length_s", g.length_s}});
+  }
+  j["gaps"] = std::move(gaps);
   j["non_finite_dropped"] = report.non_finite_dropped;
   j["rows_dropped"] = report.rows_dropped;
   nlohmann::ordered_json channels = nlohmann::ordered_json::array();

@@ -29,6 +29,21 @@ struct SamplingOptions {
   std::function<std::int64_t(std::size_t)> line_of_sample;
 };
 
+/// One gap: an interval longer than gap_factor × the median interval.
+struct GapRecord {
+  SampleLocation after;   ///< the first sample after the gap
+  double start_s = 0.0;   ///< time of the sample before the gap, since the first stamp
+  double length_s = 0.0;  ///< the interval
+};
+
+/// Histogram of the regular intervals (0 < interval ≤ gap limit): equal-width bins from the
+/// shortest to the longest. When all are equal within 1e-9 × the median (float rounding of
+/// the stamps), one bin centred on the median.
+struct IntervalHistogram {
+  std::vector<double> bin_low_s, bin_high_s;
+  std::vector<std::int64_t> counts;
+};
+
 /// Time-stamp checks. All intervals are t[i+1] − t[i].
 struct TimingReport {
   bool has_timestamps = false;       ///< false: a fixed rate was given
@@ -46,7 +61,15 @@ struct TimingReport {
   std::optional<SampleLocation> first_duplicate;
   double jitter_rms_s = 0.0;  ///< RMS of (interval − median) over 0 < interval ≤ gap limit [s]
   double jitter_max_s = 0.0;  ///< max |interval − median| over the same intervals [s]
+  IntervalHistogram interval_histogram;  ///< of the same intervals
+  std::vector<GapRecord> gaps;           ///< the first kMaxListedGaps gaps, in time order
 };
+
+/// How many gaps a TimingReport lists one by one (gap_count counts them all).
+inline constexpr std::size_t kMaxListedGaps = 10000;
+
+/// Bins of TimingReport::interval_histogram.
+inline constexpr int kIntervalHistogramBins = 41;
 
 /// Per-channel checks; values in the channel's unit.
 struct ChannelReport {

@@ -127,6 +127,12 @@ double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
 AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
                           double tau0_s, int axis_index, const AxisAnalysisOptions& options) {
   check_rate_samples(name, rate);
+  const int replicates = options.bootstrap_replicates >= 2 ? options.bootstrap_replicates : 0;
+  const std::int64_t units = 4 + replicates;  // see AxisAnalysisOptions::progress
+  const auto progress = [&](std::string_view stage, std::int64_t done) {
+    report_progress(options.progress, stage, done, units);
+  };
+  progress("deviations", 0);
   AxisAnalysis out;
   const std::vector<double> phase = analysis::phase_from_rate(rate, tau0_s);
   const auto n_phase = static_cast<std::int64_t>(phase.size());
@@ -143,10 +149,12 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   const std::vector<std::int64_t> m_oadev =
       analysis::averaging_factors(options.grid, dev.type, n_phase);
   out.oadev = analysis::compute_deviation(phase, tau0_s, m_oadev, dev);
+  progress("deviations", 1);
   dev.type = analysis::DeviationType::ohdev;
   const std::vector<std::int64_t> m_ohdev =
       analysis::averaging_factors(options.grid, dev.type, n_phase);
   out.ohdev = analysis::compute_deviation(phase, tau0_s, m_ohdev, dev);
+  progress("fit", 2);
 
   // 2. The fit on OAVAR (σ² domain, theory.md §4.3).
   // fit_points caps each EDF at the largest value of the white/flicker/RW noise types for that
@@ -174,10 +182,12 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
     adevs.push_back(p.value);
   }
   out.slope = analysis::slope_readoff(taus, adevs);
+  progress("PSD", 3);
   const analysis::Spectrum raw = analysis::welch_psd(rate, 1.0 / tau0_s, options.welch);
   out.psd = analysis::log_bin(raw, options.psd_bins_per_decade);
   out.psd_readoff = analysis::psd_readoff(out.psd);
   out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s, 0.4 / tau0_s);
+  progress(replicates > 0 ? "bootstrap" : "intervals", 4);
 
   // 4. Intervals.
   models::AxisModel& model = out.model;
@@ -195,6 +205,11 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
     boot.seed = options.seed * 1000003ULL + static_cast<std::uint64_t>(axis_index);
     boot.confidence = options.confidence;
     boot.threads = options.threads;
+    if (options.progress) {
+      boot.progress = [&progress](std::string_view stage, std::int64_t done, std::int64_t) {
+        progress(stage, 4 + done);
+      };
+    }
     const BootstrapResult result =
         bootstrap_fit(out.fit, points, m_oadev, static_cast<std::int64_t>(rate.size()), tau0_s,
                       fit_options, boot);
@@ -293,6 +308,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
       std::to_string(out.psd_check.bins_outside) + " of " +
       std::to_string(out.psd_check.bins_compared) + " PSD bins outside their 99 % interval (" +
       number_text(out.psd_check.f_min_hz) + "–" + number_text(out.psd_check.f_max_hz) + " Hz)";
+  progress("done", units);
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include "analysis/psd_model.h"
 #include "analysis/slope_readoff.h"
 #include "analysis/tau_grid.h"
+#include "common/progress.h"
 #include "models/noise_model.h"
 
 namespace imunoise::pipeline {
@@ -32,6 +33,11 @@ struct AxisAnalysisOptions {
   int bootstrap_replicates = 50;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
   std::uint64_t seed = 1;         ///< bootstrap master seed (axis index is mixed in)
   unsigned threads = 1;           ///< threads for this axis (deviation τ and bootstrap)
+  /// Optional progress of one axis, in units of 4 + bootstrap_replicates (0 without the
+  /// bootstrap): OADEV, OHDEV, fit, PSD, then one per replicate. The stage named is the one
+  /// now running: "deviations", "fit", "PSD", "bootstrap" or "intervals", and "done" at the
+  /// end (done == total). Does not change the result.
+  ProgressCallback progress;
 };
 
 /// The complete result of one axis.

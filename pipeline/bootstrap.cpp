@@ -76,6 +76,7 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
   };
   std::vector<Replicate> results(static_cast<std::size_t>(options.replicates));
   std::atomic<int> next{0};
+  std::atomic<int> finished{0};  // for the progress callback only
 
   const auto worker = [&] {
     std::vector<double> rate(static_cast<std::size_t>(n_samples));
@@ -108,6 +109,7 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
       } catch (const AnalysisError&) {
         out.ok = false;  // counted below; a replicate the estimator cannot fit is dropped
       }
+      report_progress(options.progress, "bootstrap", ++finished, options.replicates);
     }
   };
   const unsigned threads =

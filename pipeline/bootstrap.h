@@ -13,6 +13,7 @@
 
 #include "analysis/noise_fit.h"
 #include "common/noise_coefficients.h"
+#include "common/progress.h"
 
 namespace imunoise::pipeline {
 
@@ -22,6 +23,9 @@ struct BootstrapOptions {
   std::uint64_t seed = 1;    ///< master seed; replicate r uses (seed, r)
   double confidence = 0.95;  ///< two-sided level of the intervals
   unsigned threads = 1;      ///< worker threads across replicates
+  /// Optional: ("bootstrap", replicates finished, replicates) after each replicate, from the
+  /// worker threads. Does not change the result.
+  ProgressCallback progress;
 };
 
 /// Interval of one scalar parameter.

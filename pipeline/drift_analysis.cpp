@@ -226,9 +226,13 @@ DriftAnalysis analyze_drift(const ImuSeries& s, const ins::InsSensorNoise& noise
   DriftAnalysis out;
   for (std::size_t p = 1; p <= g.count; ++p)
     out.time_s.push_back(static_cast<double>(p) * o.output_step_s);
-  for (std::size_t m = 0; m < segments; ++m)
+  const auto segment_count = static_cast<std::int64_t>(segments);
+  report_progress(o.progress, "segments", 0, segment_count);
+  for (std::size_t m = 0; m < segments; ++m) {
     out.segments.push_back(
         run_segment(s, warmup + m * per_segment, g.n_align, g.stride, g.count, o, gyro_sigma));
+    report_progress(o.progress, "segments", static_cast<std::int64_t>(m) + 1, segment_count);
+  }
   const auto& first = out.segments.front().alignment;
   out.heading_note = first.heading_note;
 
@@ -300,6 +304,7 @@ MonteCarloEnvelope monte_carlo_drift(const models::ImuNoiseModel& simulation,
   std::vector<std::vector<double>> radial(g.count, std::vector<double>(runs));
   std::array<std::vector<double>, 6> data;
   for (auto& d : data) d.resize(n);
+  report_progress(o.progress, "Monte Carlo", 0, runs);
   for (int r = 0; r < runs; ++r) {
     models::SimulationOptions so;
     so.sample_rate_hz = 1.0 / dt;
@@ -314,6 +319,7 @@ MonteCarloEnvelope monte_carlo_drift(const models::ImuNoiseModel& simulation,
     series.sample_period_s = dt;
     const auto seg = run_segment(series, 0, g.n_align, g.stride, g.count, one, gyro_sigma);
     for (std::size_t p = 0; p < g.count; ++p) radial[p][r] = seg.position_error_ne_m[p].norm();
+    report_progress(o.progress, "Monte Carlo", r + 1, runs);
   }
   MonteCarloEnvelope env;
   env.runs = runs;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/progress.h"
 #include "common/units.h"
 #include "ins/alignment.h"
 #include "ins/drift_prediction.h"
@@ -46,6 +47,9 @@ struct DriftOptions {
   /// Times at which the consistency statistics are computed [s], each ≤ navigation_s and a
   /// whole number of output steps.
   std::vector<double> report_times_s{60.0, 300.0, 600.0};
+  /// Optional progress: analyze_drift reports ("segments", segments done, segments),
+  /// monte_carlo_drift ("Monte Carlo", runs done, runs). Does not change the result.
+  ProgressCallback progress;
 };
 
 /// Result of the stationarity check (a moving IMU cannot be judged by a noise model).

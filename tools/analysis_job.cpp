@@ -3,17 +3,22 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <filesystem>
 #include <iostream>
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "tools/progress.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
@@ -47,6 +52,72 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
   options.auto_low_pass = !s.no_low_pass_check;
   return options;
 }
+
+/// Feeds one progress bar and the stage times from the channels analysed in parallel: the
+/// bar's fraction is the sum of the channels' units over their total, its stage the one
+/// reported last. Only atomics on the hot path; the times take a short lock on a stage change.
+class ChannelProgress {
+ public:
+  ChannelProgress(std::size_t channels, const pipeline::AxisAnalysisOptions& options,
+                  const AnalysisFeedback& feedback)
+      : feedback_(feedback),
+        done_(channels),
+        stage_(channels),
+        stage_start_(channels),
+        units_per_channel_(4 +
+                           (options.bootstrap_replicates >= 2 ? options.bootstrap_replicates : 0)),
+        channels_(static_cast<std::int64_t>(channels)) {
+    if (feedback_.bar != nullptr) feedback_.bar->set_items(0, channels_, "channels");
+  }
+
+  /// The callback of channel I (empty when nobody listens).
+  ProgressCallback callback(std::size_t i) {
+    if ((feedback_.bar == nullptr || !feedback_.bar->enabled()) &&
+        feedback_.channel_times == nullptr) {
+      return {};
+    }
+    return [this, i](std::string_view stage, std::int64_t done, std::int64_t) {
+      std::int64_t seen = done_[i].load();
+      while (done > seen && !done_[i].compare_exchange_weak(seen, done)) {
+      }
+      if (feedback_.channel_times != nullptr) time_stage(i, stage);
+      if (feedback_.bar != nullptr) {
+        std::int64_t sum = 0;
+        for (const auto& d : done_) sum += d.load();
+        feedback_.bar->update(stage, sum, units_per_channel_ * channels_);
+      }
+    };
+  }
+
+  void channel_finished() {
+    const std::int64_t finished = ++finished_;
+    if (feedback_.bar != nullptr) feedback_.bar->set_items(finished, channels_, "channels");
+  }
+
+ private:
+  /// Closes the running stage of channel I when it changes (stages arrive in order per
+  /// channel; bootstrap replicates repeat the same stage).
+  void time_stage(std::size_t i, std::string_view stage) {
+    const auto now = std::chrono::steady_clock::now();
+    std::lock_guard<std::mutex> lock(times_mutex_);
+    if (stage_[i] == stage) return;
+    if (!stage_[i].empty()) {
+      feedback_.channel_times->add(stage_[i],
+                                   std::chrono::duration<double>(now - stage_start_[i]).count());
+    }
+    stage_[i].assign(stage);
+    stage_start_[i] = now;
+  }
+
+  const AnalysisFeedback feedback_;
+  std::vector<std::atomic<std::int64_t>> done_;
+  std::vector<std::string> stage_;  // under times_mutex_
+  std::vector<std::chrono::steady_clock::time_point> stage_start_;
+  std::mutex times_mutex_;
+  const std::int64_t units_per_channel_;
+  const std::int64_t channels_;
+  std::atomic<std::int64_t> finished_{0};
+};
 
 }  // namespace
 
@@ -117,7 +188,8 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
 }
 
 AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
-                                 const AnalysisSettings& settings, bool progress) {
+                                 const AnalysisSettings& settings,
+                                 const AnalysisFeedback& feedback) {
   const double tau0_s = recording.sample_period_s;
   std::vector<std::pair<std::size_t, const io::Channel*>> channels;
   for (std::size_t c = 0; c < io::kImuChannelNames.size(); ++c) {
@@ -139,26 +211,21 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
   std::vector<std::optional<pipeline::AxisAnalysis>> results(channels.size());
   std::vector<std::exception_ptr> errors(channels.size());
   std::atomic<std::size_t> next{0};
-  std::mutex print_mutex;
+  ChannelProgress progress(channels.size(), options, feedback);
   const auto worker = [&] {
     for (std::size_t i = next++; i < channels.size(); i = next++) {
       const auto [index, channel] = channels[i];
       try {
+        pipeline::AxisAnalysisOptions channel_options = options;
+        channel_options.progress = progress.callback(i);
         results[i] = pipeline::analyze_axis(channel->name, index < 3, channel->values, tau0_s,
-                                            static_cast<int>(index), options);
-        if (progress) {
-          std::lock_guard<std::mutex> lock(print_mutex);
-          std::cerr << "  " << channel->name << " done\n";
-        }
+                                            static_cast<int>(index), channel_options);
       } catch (...) {
         errors[i] = std::current_exception();
       }
+      progress.channel_finished();
     }
   };
-  if (progress) {
-    std::cerr << "imunoise: analysing " << channels.size() << " channels on " << threads
-              << " thread(s), bootstrap " << settings.bootstrap << " replicates\n";
-  }
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();

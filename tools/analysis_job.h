@@ -41,12 +41,26 @@ struct AnalysisResult {
   double tau0_s = 0.0;
 };
 
+class ProgressBar;
+class StageTimes;
+
+/// What analyze_recording reports while it runs; every part is optional and none changes the
+/// result.
+struct AnalysisFeedback {
+  /// Advanced per stage and bootstrap replicate of every channel ("k/6 channels"); the caller
+  /// finishes it.
+  ProgressBar* bar = nullptr;
+  /// Wall seconds per stage (deviations, fit, PSD, bootstrap/intervals), summed over channels.
+  StageTimes* channel_times = nullptr;
+};
+
 /// Analyses every gyro/accel channel of `recording` (threads across channels). `source` names
-/// the data in the model (model.source; sensor_name is its file name). `progress` prints one
-/// line per finished channel on stderr. Throws InputError for bad settings (naming the flag)
-/// or a recording without IMU channels, AnalysisError when the data cannot give a fit.
+/// the data in the model (model.source; sensor_name is its file name). Throws InputError for
+/// bad settings (naming the flag) or a recording without IMU channels, AnalysisError when the
+/// data cannot give a fit.
 AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
-                                 const AnalysisSettings& settings, bool progress);
+                                 const AnalysisSettings& settings,
+                                 const AnalysisFeedback& feedback = {});
 
 /// Data-quality findings of a sampling report, one line each (empty = nothing to say).
 std::vector<std::string> quality_findings(const io::SamplingReport& report);

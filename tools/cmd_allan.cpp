@@ -17,6 +17,7 @@
 #include "io/sampling_report.h"
 #include "tools/commands.h"
 #include "tools/recording_input.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
@@ -37,6 +38,7 @@ struct AllanArgs {
   unsigned threads = 0;
   LcmInputFlags lcm;
   CLI::Option* tau0_option = nullptr;  // to tell a given --tau0 from the default
+  Verbosity verbosity;
 };
 
 /// Which EDF model the interval uses, for the table header.
@@ -85,7 +87,8 @@ io::Series lcm_series(const AllanArgs& args, const io::SeriesReadOptions& read_o
   return series;
 }
 
-void run_allan(const AllanArgs& args) {
+/// TIMES gets the wall time of reading and of the deviation.
+void run_allan(const AllanArgs& args, StageTimes& times) {
   const auto type = analysis::parse_deviation_type(args.type);
   if (!type) throw InputError("unknown --type '" + args.type + "'");
   const bool tau0_given = args.tau0_option != nullptr && args.tau0_option->count() > 0;
@@ -140,6 +143,7 @@ void run_allan(const AllanArgs& args) {
     throw AnalysisError(located_message(args.file, 0, 0, e.what()));
   }
 
+  times.mark("read");
   analysis::DeviationOptions options;
   options.type = *type;
   options.confidence = args.confidence;
@@ -148,6 +152,7 @@ void run_allan(const AllanArgs& args) {
   options.bias_corrected = args.bias_corrected;
   const analysis::DeviationCurve curve =
       analysis::compute_deviation(phase, tau0_s, factors, options);
+  times.mark("deviations");
 
   if (args.json) {
     nlohmann::ordered_json out;
@@ -252,7 +257,13 @@ void register_allan_command(CLI::App& app) {
                 "drop NaN/Inf values instead of failing (the count is reported)");
   cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
-  cmd->callback([args] { run_allan(*args); });
+  add_verbosity_options(*cmd, args->verbosity);
+  cmd->callback([args] {
+    StageTimes times;
+    run_allan(*args, times);
+    times.mark("output");
+    print_timings(args->verbosity, "allan", times);
+  });
 }
 
 }  // namespace imunoise::tools

@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -32,14 +33,20 @@
 #include "io/atomic_output.h"
 #include "io/csv_reader.h"
 #include "io/noise_model_yaml.h"
+#include "io/sampling_report.h"
 #include "io/simulation_model.h"
+#include "models/datasheet_units.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
 #include "tools/analysis_job.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
+#include "tools/invocation.h"
 #include "tools/lcm_bus.h"
+#include "tools/progress.h"
 #include "tools/recording_input.h"
+#include "tools/report_job.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
@@ -55,7 +62,7 @@ struct AnalyzeArgs {
   std::string output_dir;
   AnalysisSettings analysis;
   std::string truth_path;
-  bool quiet = false;
+  Verbosity verbosity;
   bool publish = false;
   std::string lcm_url = kDefaultLcmUrl;
   std::string model_channel = "NOISE_MODEL";
@@ -65,39 +72,12 @@ struct AnalyzeArgs {
 /// A coefficient in the unit people read on datasheets, with that unit's name.
 struct DisplayUnit {
   double factor;  ///< SI value × factor = display value
-  const char* name;
+  std::string_view name;
 };
 
 DisplayUnit display_unit(models::Term term, bool gyro) {
-  using models::Term;
-  const double sqrt_hour = std::sqrt(units::kHour);
-  if (gyro) {
-    switch (term) {
-      case Term::quantization:
-        return {1e6, "urad"};
-      case Term::white_noise:
-        return {1.0 / units::kDegPerSqrtHour, "deg/sqrt(h)"};
-      case Term::bias_instability:
-        return {1.0 / units::kDegPerHour, "deg/h"};
-      case Term::random_walk:
-        return {1.0 / units::kDegPerHourPerSqrtHour, "deg/h/sqrt(h)"};
-      case Term::ramp:
-        return {units::kHour * units::kHour / units::kDeg, "deg/h^2"};
-    }
-  }
-  switch (term) {
-    case Term::quantization:
-      return {1e3, "mm/s"};
-    case Term::white_noise:
-      return {1.0 / units::kMicroG, "ug/sqrt(Hz)"};
-    case Term::bias_instability:
-      return {1.0 / units::kMicroG, "ug"};
-    case Term::random_walk:
-      return {units::kHour * sqrt_hour, "m/s/h/sqrt(h)"};
-    case Term::ramp:
-      return {units::kHour / units::kMicroG, "ug/h"};
-  }
-  return {1.0, ""};
+  const models::DatasheetUnit unit = models::datasheet_unit(term, gyro);
+  return {unit.factor, unit.ascii};
 }
 
 std::string unit_suffix(bool gyro) { return gyro ? "rad_per_s" : "m_per_s2"; }
@@ -253,7 +233,8 @@ void print_summary(const models::NoiseModel& model,
   }
 }
 
-void run_analyze(const AnalyzeArgs& args) {
+/// TIMES gets the wall time of reading and of the analysis (the caller adds the outputs).
+void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   std::optional<std::array<NoiseCoefficients, 6>> truth;
   if (!args.truth_path.empty()) {
@@ -265,24 +246,41 @@ void run_analyze(const AnalyzeArgs& args) {
     }
     truth = values;
   }
-  const bool progress = !args.quiet && isatty(STDERR_FILENO);
+  ProgressBar bar("analyze", progress_wanted(args.verbosity));
   // Open the bus before the work: a bad --lcm-url fails in a second, not after the analysis.
   std::optional<LcmBus> bus;
   if (args.publish) bus.emplace(args.lcm_url);
 
-  const io::Recording recording = read_input_recording(args.file, config, args.lcm);
-  AnalysisResult result = analyze_recording(recording, args.file, args.analysis, progress);
+  const io::Recording recording = read_input_recording(args.file, config, args.lcm, bar.callback());
+  times.mark("read");
+  StageTimes channel_times;
+  AnalysisResult result =
+      analyze_recording(recording, args.file, args.analysis,
+                        {&bar, args.verbosity.verbose ? &channel_times : nullptr});
+  bar.finish();  // before anything else is written: the next output starts on a clean line
+  times.mark("analysis");
+  print_detail(args.verbosity, "analyze",
+               std::to_string(result.axes.size()) + " channels, bootstrap " +
+                   std::to_string(args.analysis.bootstrap) +
+                   " replicates; per stage, summed over the channels: " + channel_times.text());
   const models::NoiseModel& model = result.model;
   const std::vector<pipeline::AxisAnalysis>& axes = result.axes;
   const double tau0_s = result.tau0_s;
 
-  std::filesystem::create_directories(args.output_dir);
+  io::create_output_directory(args.output_dir);
   const std::filesystem::path dir(args.output_dir);
   io::write_model_yaml(model, (dir / "model.yaml").string());
   write_allan_csv((dir / "allan.csv").string(), axes, tau0_s);
   write_psd_csv((dir / "psd.csv").string(), axes, tau0_s);
+  io::write_file_atomically(
+      (dir / "sampling_report.json").string(),
+      io::sampling_report_to_json(recording.report, args.file).dump(2) + "\n");
+  write_command_file(dir.string());
+  const ReportOutput report = write_report(dir.string());
   print_summary(model, truth);
-  std::cout << "\nwrote " << (dir / "model.yaml").string() << ", allan.csv, psd.csv\n";
+  std::cout << "\nwrote " << (dir / "model.yaml").string()
+            << ", allan.csv, psd.csv, sampling_report.json, plots/\nreport: " << report.html_path
+            << "\n";
   if (bus) {
     const std::int64_t utime = now_utime_us();
     bus->publish(args.model_channel, io::noise_model_message(model, utime));
@@ -315,7 +313,7 @@ void register_analyze_command(CLI::App& app) {
   cmd->add_option("--truth", args->truth_path,
                   "simulator model file (e.g. the one given to 'imunoise simulate'): print the "
                   "true coefficients next to the recovered ones");
-  cmd->add_flag("-q,--quiet", args->quiet, "no progress messages");
+  add_verbosity_options(*cmd, args->verbosity);
   const std::string lcm_group = "Publishing on LCM";
   cmd->add_flag("--publish", args->publish,
                 "at the end, publish the model (imunoise.noise_model_t) and the OADEV curves "
@@ -339,7 +337,12 @@ void register_analyze_command(CLI::App& app) {
       "Outputs: model.yaml (SI units named in every key, docs/model-yaml.md), allan.csv\n"
       "(OADEV/OHDEV with intervals and the model ADEV, per axis), psd.csv (log-binned one-sided\n"
       "PSD with dof and the model PSD, per axis); units are part of every column name.");
-  cmd->callback([args] { run_analyze(*args); });
+  cmd->callback([args] {
+    StageTimes times;
+    run_analyze(*args, times);
+    times.mark("outputs");
+    print_timings(args->verbosity, "analyze", times);
+  });
 }
 
 }  // namespace imunoise::tools

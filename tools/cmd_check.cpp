@@ -11,7 +11,9 @@
 #include "io/sampling_report.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
+#include "tools/progress.h"
 #include "tools/recording_input.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
@@ -23,16 +25,22 @@ struct CheckArgs {
   io::InputConfig flags;
   std::string config_path;
   bool json = false;
+  Verbosity verbosity;
 };
 
 void run_check(const CheckArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
-  const io::Recording recording = read_input_recording(args.file, config, args.lcm);
+  StageTimes times;
+  ProgressBar bar("check", progress_wanted(args.verbosity));
+  const io::Recording recording = read_input_recording(args.file, config, args.lcm, bar.callback());
+  bar.finish();
+  times.mark("read");
   if (args.json) {
     std::cout << io::sampling_report_to_json(recording.report, args.file).dump(2) << "\n";
   } else {
     std::cout << io::format_sampling_report(recording.report, args.file);
   }
+  print_timings(args.verbosity, "check", times);
 }
 
 }  // namespace
@@ -58,6 +66,7 @@ void register_check_command(CLI::App& app) {
   add_lcm_input_options(*cmd, args->lcm);
   cmd->add_flag("--json", args->json,
                 "print one JSON object (keys carry units: rate_hz, longest_gap_s, jitter_rms_s)");
+  add_verbosity_options(*cmd, args->verbosity);
   cmd->callback([args] { run_check(*args); });
 }
 

@@ -26,6 +26,8 @@
 #include "models/state_space.h"
 #include "tools/commands.h"
 #include "tools/gm_convention_option.h"
+#include "tools/invocation.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 namespace {
@@ -44,6 +46,7 @@ struct DiscretizeArgs {
   double gyro_scale_sigma_ppm = 0.0;
   double accel_scale_sigma_ppm = 0.0;
   std::string output;
+  Verbosity verbosity;
 };
 
 const std::map<std::string, ins::BiasModel> kBiasModels{{"rw", ins::BiasModel::random_walk},
@@ -266,6 +269,7 @@ void run_discretize(const DiscretizeArgs& a) {
   const auto base = std::filesystem::path(a.output) / "discrete_model";
   io::write_file_atomically(base.string() + ".yaml", y.str());
   io::write_file_atomically(base.string() + ".json", j.dump(2) + "\n");
+  write_command_file(a.output);
   std::cout << base.string() << ".yaml\n" << base.string() << ".json\n";
 }
 
@@ -311,7 +315,13 @@ void register_discretize_command(CLI::App& app) {
   sub->add_option("-o,--output", args->output,
                   "output directory: discrete_model.yaml and discrete_model.json")
       ->required();
-  sub->callback([args] { run_discretize(*args); });
+  add_verbosity_options(*sub, args->verbosity);
+  sub->callback([args] {
+    StageTimes times;
+    run_discretize(*args);
+    times.mark("load, discretize and write");
+    print_timings(args->verbosity, "discretize", times);
+  });
 }
 
 }  // namespace imunoise::tools

@@ -27,7 +27,11 @@
 #include "tools/duration.h"
 #include "tools/gm_convention_option.h"
 #include "tools/input_options.h"
+#include "tools/invocation.h"
+#include "tools/progress.h"
 #include "tools/recording_input.h"
+#include "tools/report_job.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 namespace {
@@ -52,9 +56,12 @@ struct DriftArgs {
   std::string gm_convention = "peak_match";
   bool force = false;
   std::string output;
+  Verbosity verbosity;
 };
 
-void run_drift(DriftArgs a) {
+/// TIMES gets the wall time of each computing stage (the caller adds the outputs).
+void run_drift(DriftArgs a, StageTimes& times) {
+  ProgressBar bar("drift", progress_wanted(a.verbosity));
   if (a.location.size() != 3)
     throw InputError("--location: expected LAT,LON,H (deg, deg, m), got " +
                      std::to_string(a.location.size()) + " values");
@@ -79,7 +86,8 @@ void run_drift(DriftArgs a) {
   if (o.report_times_s.empty()) o.report_times_s.push_back(o.navigation_s);
 
   const io::InputConfig config = resolve_input_config(a.flags, a.config_path);
-  const io::Recording recording = read_input_recording(a.file, config, a.lcm);
+  const io::Recording recording = read_input_recording(a.file, config, a.lcm, bar.callback());
+  times.mark("read");
   pipeline::ImuSeries series;
   series.sample_period_s = recording.sample_period_s;
   for (int c = 0; c < 6; ++c) {
@@ -101,7 +109,9 @@ void run_drift(DriftArgs a) {
                      "); drift analysis compares free-inertial drift at rest with the noise "
                      "model — use --force to run it anyway");
 
+  o.progress = bar.callback();
   const auto drift = pipeline::analyze_drift(series, noise, o);
+  times.mark("segments and prediction");
   std::optional<pipeline::MonteCarloEnvelope> mc;
   if (a.monte_carlo > 0) {
     models::ImuNoiseModel simulation;
@@ -115,7 +125,9 @@ void run_drift(DriftArgs a) {
     band.tau_max_s = std::max(1e4, 10.0 * (o.align_s + o.navigation_s));
     mc = pipeline::monte_carlo_drift(simulation, band, noise, series.sample_period_s, o,
                                      a.monte_carlo, a.seed);
+    times.mark("Monte Carlo");
   }
+  bar.finish();  // before any other output: it starts on a clean line
 
   std::error_code ec;
   std::filesystem::create_directories(a.output, ec);
@@ -247,8 +259,11 @@ void run_drift(DriftArgs a) {
     }
     std::cout << "\n";
   }
+  write_command_file(dir.string());
+  const ReportOutput report = write_report(dir.string());
   std::cout << "\nwrote " << (dir / "drift_segments.csv").string()
-            << ", drift_envelope.csv, drift_summary.json\n";
+            << ", drift_envelope.csv, drift_summary.json, plots/\nreport: " << report.html_path
+            << "\n";
 }
 
 }  // namespace
@@ -295,9 +310,13 @@ void register_drift_command(CLI::App& app) {
       ->check(CLI::IsMember(gm_conventions()));
   cmd->add_flag("--force", args->force, "run even if the IMU moves or the record has gaps");
   cmd->add_option("-o,--output", args->output, "output directory (created if needed)")->required();
+  add_verbosity_options(*cmd, args->verbosity);
   cmd->callback([args, location] {
     args->location_given = location->count() > 0;
-    run_drift(*args);
+    StageTimes times;
+    run_drift(*args, times);
+    times.mark("outputs");
+    print_timings(args->verbosity, "drift", times);
   });
 }
 

@@ -16,6 +16,8 @@
 #include "io/noise_model_yaml.h"
 #include "tools/commands.h"
 #include "tools/gm_convention_option.h"
+#include "tools/invocation.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 namespace {
@@ -29,6 +31,7 @@ struct ExportArgs {
   std::string gm_convention = "peak_match";
   double correction_interval_s = 0.0;
   std::string output;
+  Verbosity verbosity;
 };
 
 const std::map<std::string, models::AxisChoice> kAxisChoices{
@@ -79,6 +82,7 @@ void run_export(const ExportArgs& a, bool axis_given) {
       io::write_file_atomically(path, io::export_config(model, request));
       std::cout << path << '\n';
     }
+    write_command_file(a.output);
     return;
   }
   const auto format = io::parse_export_format(a.to);
@@ -131,7 +135,13 @@ void register_export_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   sub->add_option("-o,--output", args->output,
                   "output file (default: stdout); a directory for --to all");
-  sub->callback([args, axis] { run_export(*args, axis->count() > 0); });
+  add_verbosity_options(*sub, args->verbosity);
+  sub->callback([args, axis] {
+    StageTimes times;
+    run_export(*args, axis->count() > 0);
+    times.mark("load, select and write");
+    print_timings(args->verbosity, "export", times);
+  });
 }
 
 }  // namespace imunoise::tools

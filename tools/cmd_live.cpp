@@ -21,12 +21,14 @@
 
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "io/atomic_output.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "tools/analysis_job.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
 #include "tools/lcm_bus.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
@@ -50,7 +52,7 @@ struct LiveArgs {
   bool no_curves = false;
   std::string output_dir;
   AnalysisSettings analysis;
-  bool quiet = false;
+  Verbosity verbosity;
 };
 
 /// What arrived, and what was done with it.
@@ -186,7 +188,7 @@ void run_live(const LiveArgs& args) {
       args.max_runtime.empty() ? 0.0 : parse_duration_s(args.max_runtime, "--max-runtime");
   if (args.max_samples < 16) throw InputError("--max-samples: expected at least 16");
   if (args.queue_capacity < 1) throw InputError("--queue-capacity: expected at least 1");
-  if (!args.output_dir.empty()) std::filesystem::create_directories(args.output_dir);
+  if (!args.output_dir.empty()) io::create_output_directory(args.output_dir);
 
   const bool reads_a_log = args.url.rfind("file://", 0) == 0 &&
                            args.url.find("mode=w") == std::string::npos &&
@@ -222,16 +224,18 @@ void run_live(const LiveArgs& args) {
   LiveCounts& counts = window.counts();
 
   const auto log = [&](const std::string& line) {
-    if (!args.quiet) std::cerr << "imunoise live: " << line << "\n";
+    if (!args.verbosity.quiet) std::cerr << "imunoise live: " << line << "\n";
   };
+  auto analysis_started = started;  // for --verbose
   const auto start_analysis = [&] {
+    analysis_started = std::chrono::steady_clock::now();
     io::ImuSampleColumns columns = window.snapshot();
     analysed_until_us = window.last_utime();
     running = std::async(std::launch::async, [columns = std::move(columns), &args, source,
                                               channel = args.channel]() mutable {
       const io::Recording recording =
           io::recording_from_imu_samples(std::move(columns), source, channel);
-      return analyze_recording(recording, source, args.analysis, false);
+      return analyze_recording(recording, source, args.analysis);
     });
   };
   const auto finish_analysis = [&] {
@@ -259,6 +263,12 @@ void run_live(const LiveArgs& args) {
           std::to_string(result.model.samples) + " samples, " +
           significant_number_text(result.model.duration_s, 6) + " s at " +
           significant_number_text(result.model.sample_rate_hz, 6) + " Hz); " + counts_text(counts));
+      if (args.verbosity.verbose) {
+        const std::chrono::duration<double> took =
+            std::chrono::steady_clock::now() - analysis_started;
+        log("analysis and publishing took " + significant_number_text(took.count(), 3) +
+            " s wall time");
+      }
     } catch (const InputError& e) {
       ++counts.failed_analyses;
       log(std::string("analysis failed, will retry with more data: ") + e.what());
@@ -348,7 +358,7 @@ void register_live_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output_dir,
                   "also write DIR/model.yaml after every analysis (atomically)");
   add_analysis_options(*cmd, args->analysis);
-  cmd->add_flag("-q,--quiet", args->quiet, "no status lines on stderr");
+  add_verbosity_options(*cmd, args->verbosity);
   cmd->footer(
       "Examples:\n"
       "  imunoise live --channel IMU --window 30min --every 60s\n"

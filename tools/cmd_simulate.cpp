@@ -31,6 +31,8 @@
 #include "models/noise_simulator.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
+#include "tools/progress.h"
+#include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
@@ -62,6 +64,7 @@ struct SimulateArgs {
   double accel_bias_mg = 0.0;
   double accel_lsb_mg = 0.0;
   std::vector<double> specific_force_m_per_s2;
+  Verbosity verbosity;
   /// Options whose presence decides whether they override the model file.
   std::vector<std::pair<CLI::Option*, std::function<void(SimulationSetup&)>>> overrides;
 };
@@ -152,7 +155,8 @@ SimulationSetup setup_from_fitted_model(const std::string& path) {
   return setup;
 }
 
-void run_simulate(const SimulateArgs& args) {
+/// TIMES gets the wall time of the set-up and of generating + writing.
+void run_simulate(const SimulateArgs& args, StageTimes& times) {
   // 1. Load and merge; every check happens before the output file is opened.
   SimulationSetup setup;
   setup.source = "command-line flags";
@@ -191,6 +195,7 @@ void run_simulate(const SimulateArgs& args) {
   options.seed = args.seed;
   options.flicker_band = {band[0], band[1]};
   models::ImuSimulator simulator(model, options);
+  times.mark("setup");
 
   // 2. Generate and write block by block: memory stays constant for any duration.
   io::AtomicOutputFile file(args.output);
@@ -206,7 +211,9 @@ void run_simulate(const SimulateArgs& args) {
   std::vector<double> values(models::kImuChannels * kBlock);
   std::vector<char> text(kBlock * kMaxRowChars);
   std::array<std::span<double>, models::kImuChannels> spans;
+  ProgressBar bar("simulate", progress_wanted(args.verbosity));
   for (std::int64_t done = 0; done < samples;) {
+    bar.update("generating", done, samples);  // per block; the bar throttles its redraws
     const std::size_t n = static_cast<std::size_t>(
         std::min<std::int64_t>(static_cast<std::int64_t>(kBlock), samples - done));
     for (std::size_t c = 0; c < models::kImuChannels; ++c) {
@@ -242,6 +249,8 @@ void run_simulate(const SimulateArgs& args) {
     done += static_cast<std::int64_t>(n);
   }
   file.commit();
+  bar.finish();
+  times.mark("generate and write");
   std::cout << "imunoise simulate: wrote " << samples << " samples ("
             << shortest_number_text(duration_s) << " s at " << shortest_number_text(rate_hz)
             << " Hz, seed " << args.seed << ") to " << args.output << "\n";
@@ -350,7 +359,12 @@ void register_simulate_command(CLI::App& app) {
       "  imunoise simulate --duration 30min --rate 200 --gyro-arw-deg-per-sqrt-h 0.4 \\\n"
       "      --gyro-bias-instability-deg-per-h 25 --specific-force-m-per-s2 0,0,-9.80665 \\\n"
       "      -o rec.csv\n");
-  sub->callback([args] { run_simulate(*args); });
+  add_verbosity_options(*sub, args->verbosity);
+  sub->callback([args] {
+    StageTimes times;
+    run_simulate(*args, times);
+    print_timings(args->verbosity, "simulate", times);
+  });
 }
 
 }  // namespace imunoise::tools

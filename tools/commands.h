@@ -19,5 +19,6 @@ void register_publish_command(CLI::App& app);     ///< imunoise publish (LCM)
 void register_discretize_command(CLI::App& app);  ///< imunoise discretize (Phi, Qd)
 void register_drift_command(CLI::App& app);       ///< imunoise drift (INS drift vs model)
 void register_simulate_command(CLI::App& app);    ///< imunoise simulate
+void register_report_command(CLI::App& app);      ///< imunoise report (report.html)
 
 }  // namespace imunoise::tools

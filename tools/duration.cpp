@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <string>
 #include <string_view>
 #include <system_error>
 
@@ -25,8 +26,27 @@ double parse_duration_s(const std::string& text, const std::string& flag, bool a
   }
   const bool in_range = allow_zero ? value >= 0.0 : value > 0.0;
   if (ec != std::errc() || scale == 0.0 || !std::isfinite(value) || !in_range) {
-    throw InputError(flag + ": expected a " + (allow_zero ? "non-negative" : "positive") +
-                     " number with unit s, min or h (e.g. 2h, 30min, 600s), got '" + text + "'");
+    std::string what = flag;
+    what.append(": expected a ")
+        .append(allow_zero ? "non-negative" : "positive")
+        .append(" number with unit s, min or h (e.g. 2h, 30min, 600s), got '")
+        .append(text)
+        .append("'");
+    // The usual slips, with the spelling that works.
+    std::string_view u = unit;
+    while (!u.empty() && u.front() == ' ') u.remove_prefix(1);
+    if (ec == std::errc() && !unit.empty() && unit.front() == ' ') {
+      what.append(" (write the unit without a space, e.g. 30min)");
+    } else if (u == "m" || u == "mins" || u == "minute" || u == "minutes") {
+      what.append(" (use 'min' for minutes)");
+    } else if (u == "sec" || u == "secs" || u == "second" || u == "seconds") {
+      what.append(" (use 's' for seconds)");
+    } else if (u == "hr" || u == "hrs" || u == "hour" || u == "hours") {
+      what.append(" (use 'h' for hours)");
+    } else if (u == "ms") {
+      what.append(" (the smallest unit is s: write e.g. 0.5s)");
+    }
+    throw InputError(what);
   }
   return value * scale;
 }

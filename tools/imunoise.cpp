@@ -8,6 +8,7 @@
 
 #include "common/errors.h"
 #include "tools/commands.h"
+#include "tools/invocation.h"
 
 namespace {
 /// Exit codes: 0 success; CLI11's own codes for command-line syntax errors; these otherwise.
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "imunoise — stationary-IMU recordings to Kalman-filter-ready stochastic error models.\n"
       "Run 'imunoise <command> --help' for the options of each command."};
+  imunoise::tools::set_invocation(argc, argv);
   app.require_subcommand(1);
   app.set_version_flag("--version", "imunoise 0.1.0");
   imunoise::tools::register_analyze_command(app);
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
   imunoise::tools::register_drift_command(app);
   imunoise::tools::register_publish_command(app);
   imunoise::tools::register_live_command(app);
+  imunoise::tools::register_report_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -121,14 +121,14 @@ bool is_lcm_log_file(const std::string& path) {
 }
 
 io::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
-                                   const LcmInputFlags& lcm) {
+                                   const LcmInputFlags& lcm, const ProgressCallback& progress) {
   if (!is_lcm_log_file(path)) {
     if (!lcm.channel.empty() || !lcm.type_path.empty() || !lcm.struct_name.empty()) {
       throw InputError(path +
                        ": --channel, --lcm-type and --lcm-struct apply to LCM logs; this file "
                        "does not start with the LCM log sync word (read as CSV/TXT without them)");
     }
-    return io::read_recording(path, config);
+    return io::read_recording(path, config, progress);
   }
   const bool user_type = !lcm.type_path.empty();
   if (!lcm.struct_name.empty() && !user_type) {

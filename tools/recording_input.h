@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "common/progress.h"
 #include "io/input_config.h"
 #include "io/recording.h"
 
@@ -32,7 +33,8 @@ bool is_lcm_log_file(const std::string& path);
 /// imunoise.imu_sample_t channel, else an error listing the channels) or a CSV/TXT table read
 /// with `config`. LCM flags on a table are an InputError, as are table-only flags (--rate,
 /// --delimiter, ...) on a log; with --lcm-type, the column/unit flags map the user's fields.
+/// PROGRESS (optional) follows the bytes read of a table (io::read_recording).
 io::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
-                                   const LcmInputFlags& lcm);
+                                   const LcmInputFlags& lcm, const ProgressCallback& progress = {});
 
 }  // namespace imunoise::tools

@@ -250,5 +250,57 @@ TEST(SamplingReportText, ReadableSummary) {
   EXPECT_THAT(text, HasSubstr("LSB:        0.001 rad/s (0.0573 deg/s)"));
 }
 
+TEST(IntervalHistogram, BinsEveryRegularIntervalAndListsTheGaps) {
+  // 10 ms steps with ±0.2 ms alternating jitter, one 55 ms gap after sample 500.
+  std::vector<double> t{0.0};
+  for (int i = 1; i < 1000; ++i) {
+    const double step = i == 501 ? 0.055 : 0.010 + (i % 2 == 0 ? 2e-4 : -2e-4);
+    t.push_back(t.back() + step);
+  }
+  const TimingReport r = analyze_timing(t);
+  const IntervalHistogram& h = r.interval_histogram;
+  ASSERT_EQ(h.counts.size(), static_cast<std::size_t>(kIntervalHistogramBins));
+  std::int64_t total = 0;
+  for (auto c : h.counts) total += c;
+  EXPECT_EQ(total, 998);  // 999 intervals, one of them the gap
+  EXPECT_NEAR(h.bin_low_s.front(), 0.0098, 1e-12);
+  EXPECT_NEAR(h.bin_high_s.back(), 0.0102, 1e-12);
+  // Two clusters: the shortest and the longest interval fill the first and last bins.
+  EXPECT_EQ(h.counts.front() + h.counts.back(), 998);
+  ASSERT_EQ(r.gaps.size(), 1u);
+  EXPECT_EQ(r.gaps[0].after.index, 501);
+  EXPECT_NEAR(r.gaps[0].start_s, t[500], 1e-12);
+  EXPECT_NEAR(r.gaps[0].length_s, 0.055, 1e-12);
+  const auto j = sampling_report_to_json(SamplingReport{1000, r, {}, 0, 0}, "x.csv");
+  EXPECT_EQ(j["interval_histogram"]["counts"].size(), h.counts.size());
+  EXPECT_EQ(j["gaps"][0]["after"]["index"], 501);
+  EXPECT_DOUBLE_EQ(j["gaps"][0]["length_s"].get<double>(), r.gaps[0].length_s);
+}
+
+TEST(IntervalHistogram, EqualIntervalsGiveOneBinAtTheMedian) {
+  std::vector<double> t;
+  for (int i = 0; i < 500; ++i) t.push_back(i * 0.02);  // decimal steps: ~1e-17 s rounding
+  const TimingReport r = analyze_timing(t);
+  ASSERT_EQ(r.interval_histogram.counts.size(), 1u);
+  EXPECT_EQ(r.interval_histogram.counts[0], 499);
+  EXPECT_LT(r.interval_histogram.bin_low_s[0], r.median_interval_s);
+  EXPECT_GT(r.interval_histogram.bin_high_s[0], r.median_interval_s);
+  EXPECT_TRUE(r.gaps.empty());
+}
+
+TEST(IntervalHistogram, GapListIsCappedButEveryGapIsCounted) {
+  std::vector<double> t{0.0};
+  const std::size_t gaps = kMaxListedGaps + 5;
+  for (std::size_t g = 0; g < gaps; ++g) {
+    t.push_back(t.back() + 1.0);
+    t.push_back(t.back() + 1.0);
+    t.push_back(t.back() + 5.0);  // a gap of 5 median intervals
+  }
+  const TimingReport r = analyze_timing(t);
+  EXPECT_EQ(r.gap_count, static_cast<std::int64_t>(gaps));
+  EXPECT_EQ(r.gaps.size(), kMaxListedGaps);
+  EXPECT_EQ(r.missing_samples, static_cast<std::int64_t>(4 * gaps));
+}
+
 }  // namespace
 }  // namespace imunoise::io

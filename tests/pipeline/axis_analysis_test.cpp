@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/noise_terms.h"
@@ -160,6 +164,53 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   // interval, i.e. of the order of the AVAR there — so the bound is not vacuous.
   const auto& last = a.oadev.points.back();
   EXPECT_LT(bound * last.tau_s / std::sqrt(2.0), 3.0 * last.value);
+}
+
+// The progress callback (common/progress.h) only observes: the same record gives bit-identical
+// curves, coefficients and intervals with and without it, also with the bootstrap on two
+// threads reporting concurrently. The reports cover the documented units: 4 + replicates,
+// ending at done == total with stage "done".
+TEST(AxisAnalysis, ProgressCallbackDoesNotChangeTheResult) {
+  const std::vector<double> rate = simulate(white_rw_truth(), 50.0, 600.0, 5);
+  AxisAnalysisOptions options;
+  options.bootstrap_replicates = 8;
+  options.threads = 2;
+  const AxisAnalysis quiet = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+
+  std::mutex mutex;
+  std::vector<std::string> stages;
+  std::int64_t largest = -1, total_seen = 0, calls = 0;
+  options.progress = [&](std::string_view stage, std::int64_t done, std::int64_t total) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (stages.empty() || stages.back() != stage) stages.emplace_back(stage);
+    largest = std::max(largest, done);
+    total_seen = total;
+    ++calls;
+  };
+  const AxisAnalysis reported = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+
+  EXPECT_EQ(total_seen, 4 + 8);
+  EXPECT_EQ(largest, total_seen);
+  EXPECT_EQ(calls, 6 + 8);  // 0, OADEV, OHDEV, fit, PSD, each replicate, done
+  ASSERT_FALSE(stages.empty());
+  EXPECT_EQ(stages.front(), "deviations");
+  EXPECT_EQ(stages.back(), "done");
+
+  ASSERT_EQ(quiet.oadev.points.size(), reported.oadev.points.size());
+  for (std::size_t i = 0; i < quiet.oadev.points.size(); ++i) {
+    EXPECT_EQ(quiet.oadev.points[i].value, reported.oadev.points[i].value);
+    EXPECT_EQ(quiet.oadev.points[i].ci_low, reported.oadev.points[i].ci_low);
+  }
+  ASSERT_EQ(quiet.ohdev.points.size(), reported.ohdev.points.size());
+  for (std::size_t i = 0; i < quiet.ohdev.points.size(); ++i) {
+    EXPECT_EQ(quiet.ohdev.points[i].value, reported.ohdev.points[i].value);
+  }
+  EXPECT_EQ(quiet.psd.density, reported.psd.density);
+  for (std::size_t t = 0; t < quiet.model.terms.size(); ++t) {
+    EXPECT_EQ(quiet.model.terms[t].value, reported.model.terms[t].value) << t;
+    EXPECT_EQ(quiet.model.terms[t].ci_low, reported.model.terms[t].ci_low) << t;
+    EXPECT_EQ(quiet.model.terms[t].ci_high, reported.model.terms[t].ci_high) << t;
+  }
 }
 
 }  // namespace

@@ -200,5 +200,25 @@ TEST(DriftAnalysis, ClearErrors) {
   EXPECT_THROW(analyze_drift(rec.series(), noise, o), InputError);
 }
 
+// The progress callback only observes: the Monte Carlo envelope is bit-identical with it, and
+// it counts the runs up to the total.
+TEST(DriftAnalysis, MonteCarloProgressDoesNotChangeTheEnvelope) {
+  const auto noise = noise_model();
+  DriftOptions o = options();
+  const auto plain = monte_carlo_drift(simulator_model(noise, false), models::FlickerBand{}, noise,
+                                       1.0 / kRate, o, 6, 5);
+  std::vector<std::int64_t> done_seen;
+  o.progress = [&](std::string_view stage, std::int64_t done, std::int64_t total) {
+    EXPECT_EQ(stage, "Monte Carlo");
+    EXPECT_EQ(total, 6);
+    done_seen.push_back(done);
+  };
+  const auto reported = monte_carlo_drift(simulator_model(noise, false), models::FlickerBand{},
+                                          noise, 1.0 / kRate, o, 6, 5);
+  EXPECT_EQ(done_seen, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(plain.radial_rms_m, reported.radial_rms_m);
+  EXPECT_EQ(plain.radial_p95_m, reported.radial_p95_m);
+}
+
 }  // namespace
 }  // namespace imunoise::pipeline

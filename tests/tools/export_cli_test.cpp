@@ -89,11 +89,19 @@ TEST(ExportCli, AllFormatsIntoADirectory) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
-    EXPECT_GT(entry.file_size(), 200u) << entry.path();
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+    if (entry.path().filename() == "commands.txt") continue;  // the command, for reports
+    EXPECT_GT(entry.file_size(), 200u) << entry.path();
     ++files;
   }
   EXPECT_EQ(files, 11);
+  // commands.txt: the directory, then the command that wrote it (shell-quoted).
+  std::ifstream commands(out / "commands.txt");
+  std::string cd, command;
+  std::getline(commands, cd);
+  std::getline(commands, command);
+  EXPECT_EQ(cd.rfind("cd ", 0), 0u) << cd;
+  EXPECT_EQ(command, "imunoise export " + model.string() + " --to all -o " + out.string());
 }
 
 TEST(ExportCli, GnssInsSimFileRunsInPython) {

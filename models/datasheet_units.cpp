@@ -1,0 +1,41 @@
+/// @file
+/// @brief Datasheet display units of the IEEE-952 terms (see datasheet_units.h).
+#include "models/datasheet_units.h"
+
+#include <cmath>
+
+#include "common/units.h"
+
+namespace imunoise::models {
+
+DatasheetUnit datasheet_unit(Term term, bool gyro) {
+  if (gyro) {
+    switch (term) {
+      case Term::quantization:
+        return {1.0 / units::kMicroradian, "urad", "µrad"};
+      case Term::white_noise:
+        return {1.0 / units::kDegPerSqrtHour, "deg/sqrt(h)", "°/√h"};
+      case Term::bias_instability:
+        return {1.0 / units::kDegPerHour, "deg/h", "°/h"};
+      case Term::random_walk:
+        return {1.0 / units::kDegPerHourPerSqrtHour, "deg/h/sqrt(h)", "°/h/√h"};
+      case Term::ramp:
+        return {1.0 / units::kDegPerHourSquared, "deg/h^2", "°/h²"};
+    }
+  }
+  switch (term) {
+    case Term::quantization:
+      return {1e3, "mm/s", "mm/s"};
+    case Term::white_noise:
+      return {1.0 / units::kMicroGPerSqrtHz, "ug/sqrt(Hz)", "µg/√Hz"};
+    case Term::bias_instability:
+      return {1.0 / units::kMicroG, "ug", "µg"};
+    case Term::random_walk:
+      return {1.0 / units::kMPerSPerHourPerSqrtHour, "m/s/h/sqrt(h)", "m/s/h/√h"};
+    case Term::ramp:
+      return {units::kHour / units::kMicroG, "ug/h", "µg/h"};
+  }
+  return {};
+}
+
+}  // namespace imunoise::models

@@ -1,0 +1,77 @@
+/// @file
+/// @brief The report's figures, built from analysis results (pure: numbers in, Plot out):
+/// Allan deviation per sensor with the fitted model, its terms and the IEEE-952 read-off
+/// points; PSD per sensor with the model PSD; recorded drift against the predicted envelope;
+/// the sampling intervals and gaps. Each Figure also gives the CSV of exactly what it plots.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "models/noise_model.h"
+#include "report/svg_plot.h"
+
+namespace imunoise::report {
+
+/// A plot with its name, caption and the CSV column names of its data (units included).
+struct Figure {
+  std::string name;     ///< e.g. "allan-gyro": the HTML id "fig-NAME", plots/NAME.svg/.csv
+  std::string caption;  ///< what is plotted, one or two sentences
+  Plot plot;
+  std::vector<std::string> series_ids;  ///< per plot.series: its name in the CSV
+  std::string x_column, y_column;       ///< e.g. "tau_s", "adev_rad_per_s"
+  bool csv_intervals = true;  ///< the CSV has the _ci_low/_ci_high columns (false when the
+                              ///< bars are only a drawing device, e.g. histogram stems)
+};
+
+/// The CSV of what FIGURE plots, one row per point: `series,X,Y,Y_ci_low,Y_ci_high` (empty
+/// interval cells where a series has none; no interval columns when !csv_intervals), then one
+/// `readoff: TEXT` row per labelled point.
+/// Numbers are shortest round-trip decimals.
+std::string figure_csv(const Figure& figure);
+
+/// One measured deviation curve (SI: rad/s or m/s²) with its confidence interval.
+struct DeviationData {
+  std::string axis_name;  ///< gyro_x … accel_z
+  std::vector<double> tau_s, deviation, ci_low, ci_high;
+};
+
+/// "allan-gyro" / "allan-accel": OADEV of the sensor's axes with interval bars; per axis the
+/// fitted total model ADEV (solid) and each identified term (dashed: Q, N, B, K, R, GM,
+/// sinusoids) from MODEL, over the measured τ range; the IEEE-952 slope read-offs marked where
+/// the method reads them (Q at τ = √3 s, N at 1 s, B as 0.664·B at the ADEV minimum, K at
+/// 3 s, R at √2 s; theory.md §4.2). Axes of the other sensor are ignored.
+Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
+                    const models::NoiseModel& model);
+
+/// One measured one-sided PSD with the fitted model's ((rad/s)²/Hz or (m/s²)²/Hz).
+struct PsdData {
+  std::string axis_name;
+  std::vector<double> frequency_hz, density, model_density;
+};
+
+/// "psd-gyro" / "psd-accel": the log-binned PSD of each axis (solid) and the model (dashed).
+Figure psd_figure(bool gyro, const std::vector<PsdData>& spectra);
+
+/// Recorded free-inertial drift and the model's prediction against time.
+struct DriftData {
+  std::vector<double> time_s, predicted_drms_m, recorded_rms_m;           ///< recorded may be empty
+  std::vector<std::vector<double>> segment_time_s, segment_horizontal_m;  ///< per segment
+};
+
+/// "drift-horizontal": each recorded segment's horizontal error (thin; thinned to ~120 points
+/// evenly spaced in log time, which draw the same), their RMS, and the predicted 1σ (DRMS)
+/// and 3σ envelopes, on log-log axes.
+Figure drift_figure(const DriftData& drift);
+
+/// "sampling-intervals": histogram of the regular sample intervals [ms] as stems at the bin
+/// centres (log count axis; empty bins left out), with the median marked.
+Figure interval_figure(const std::vector<double>& bin_low_s, const std::vector<double>& bin_high_s,
+                       const std::vector<std::int64_t>& counts, double median_interval_s);
+
+/// "sampling-gaps": each gap's length against when it happened (hours since the first sample).
+/// (The report shows a sentence instead when there are no gaps.)
+Figure gaps_figure(const std::vector<double>& start_s, const std::vector<double>& length_s,
+                   double duration_s, std::int64_t gap_count);
+
+}  // namespace imunoise::report

@@ -1,0 +1,270 @@
+// The report's figures and HTML page: the model lines and read-off points of the Allan figure
+// against the closed forms of theory.md §4.1–4.2, the CSV behind each figure against the
+// plotted series, the drift envelopes, the interval histogram, and the HTML page's structure
+// and escaping (every embedded SVG parsed as XML).
+
+#include "report/figures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/errors.h"
+#include "common/number_text.h"
+#include "report/html_page.h"
+#include "xml_check.h"
+
+namespace imunoise::report {
+namespace {
+
+using test::check_xml;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(line);
+  return out;
+}
+
+const Series* find_series(const Figure& f, const std::string& csv_id) {
+  for (std::size_t i = 0; i < f.series_ids.size(); ++i) {
+    if (f.series_ids[i] == csv_id) return &f.plot.series[i];
+  }
+  return nullptr;
+}
+
+/// y of SERIES at x (linear interpolation in log-log; the model lines are log-spaced).
+double value_at(const Series& s, double x) {
+  for (std::size_t i = 0; i + 1 < s.x.size(); ++i) {
+    if (s.x[i] <= x && x <= s.x[i + 1]) {
+      const double w = std::log(x / s.x[i]) / std::log(s.x[i + 1] / s.x[i]);
+      return std::exp(std::log(s.y[i]) + w * std::log(s.y[i + 1] / s.y[i]));
+    }
+  }
+  return std::nan("");
+}
+
+/// A gyro model with N, B, K (and the read-offs of an ideal curve).
+models::NoiseModel gyro_model() {
+  models::NoiseModel m;
+  m.confidence = 0.95;
+  models::AxisModel a;
+  a.name = "gyro_x";
+  a.gyro = true;
+  const double n = 1e-4, b = 2e-5, k = 3e-7;
+  a.terms[1].value = n;
+  a.terms[1].identified = true;
+  a.terms[2].value = b;
+  a.terms[2].identified = true;
+  a.terms[3].value = k;
+  a.terms[3].identified = true;
+  a.readoff.slope = {0.0, n, b, k, 0.0};
+  a.tau_min_adev_s = 100.0;
+  m.axes.push_back(a);
+  return m;
+}
+
+DeviationData gyro_curve() {
+  DeviationData d;
+  d.axis_name = "gyro_x";
+  for (double tau = 0.02; tau < 2e4; tau *= 2.0) {
+    d.tau_s.push_back(tau);
+    const double adev =
+        std::sqrt(1e-8 / tau + 2.0 * std::log(2.0) / std::numbers::pi * 4e-10 + 9e-14 * tau / 3.0);
+    d.deviation.push_back(adev);
+    d.ci_low.push_back(0.9 * adev);
+    d.ci_high.push_back(1.1 * adev);
+  }
+  return d;
+}
+
+TEST(AllanFigure, ModelAndTermLinesFollowTheClosedForms) {
+  const Figure f = allan_figure(true, {gyro_curve()}, gyro_model());
+  EXPECT_EQ(f.name, "allan-gyro");
+  const Series* total = find_series(f, "gyro_x model");
+  const Series* n = find_series(f, "gyro_x term N");
+  const Series* b = find_series(f, "gyro_x term B");
+  const Series* k = find_series(f, "gyro_x term K");
+  ASSERT_TRUE(total && n && b && k);
+  EXPECT_EQ(find_series(f, "gyro_x term Q"), nullptr);  // not identified: not drawn
+  // theory.md §4.1: σ² = N²/τ + (2 ln2/π)B² + K²τ/3, each term on its own.
+  for (std::size_t i = 0; i < total->x.size(); ++i) {
+    const double tau = total->x[i];
+    EXPECT_NEAR(n->y[i], 1e-4 / std::sqrt(tau), 1e-12 * n->y[i]);
+    EXPECT_NEAR(b->y[i], 2e-5 * std::sqrt(2.0 * std::log(2.0) / std::numbers::pi), 1e-15);
+    EXPECT_NEAR(k->y[i], 3e-7 * std::sqrt(tau / 3.0), 1e-12 * k->y[i]);
+    EXPECT_NEAR(total->y[i] * total->y[i],
+                n->y[i] * n->y[i] + b->y[i] * b->y[i] + k->y[i] * k->y[i],
+                1e-12 * total->y[i] * total->y[i]);
+  }
+  EXPECT_EQ(n->line, Line::dashed);
+  EXPECT_EQ(total->line, Line::solid);
+  // The model spans the measured τ range.
+  EXPECT_DOUBLE_EQ(total->x.front(), 0.02);
+  EXPECT_NEAR(total->x.back(), gyro_curve().tau_s.back(), 1e-9);
+}
+
+TEST(AllanFigure, ReadoffPointsLieOnTheTermLinesWhereIeee952ReadsThem) {
+  const Figure f = allan_figure(true, {gyro_curve()}, gyro_model());
+  ASSERT_EQ(f.plot.points.size(), 3u);  // N, B, K (Q and R not read off)
+  for (const PointLabel& p : f.plot.points) {
+    const std::string symbol = p.text.substr(p.text.size() - 1);
+    const Series* term = find_series(f, "gyro_x term " + symbol);
+    ASSERT_NE(term, nullptr) << p.text;
+    EXPECT_NEAR(value_at(*term, p.x), p.y, 1e-9 * p.y) << p.text;
+  }
+  // N at τ = 1 s reads N; K at τ = 3 s reads K; B at the minimum reads 0.664·B.
+  EXPECT_EQ(f.plot.points[0].x, 1.0);
+  EXPECT_DOUBLE_EQ(f.plot.points[0].y, 1e-4);
+  EXPECT_EQ(f.plot.points[1].x, 100.0);
+  EXPECT_NEAR(f.plot.points[1].y, 0.6643 * 2e-5, 1e-4 * 2e-5);
+  EXPECT_EQ(f.plot.points[2].x, 3.0);
+  EXPECT_DOUBLE_EQ(f.plot.points[2].y, 3e-7);
+}
+
+TEST(AllanFigure, OtherSensorAxesAreLeftOut) {
+  const Figure f = allan_figure(false, {gyro_curve()}, gyro_model());
+  EXPECT_EQ(f.name, "allan-accel");
+  EXPECT_TRUE(f.plot.series.empty());
+  EXPECT_TRUE(check_xml(render_svg(f.plot)).ok);
+}
+
+TEST(FigureCsv, HoldsExactlyThePlottedPointsWithUnitsInTheHeader) {
+  const Figure f = allan_figure(true, {gyro_curve()}, gyro_model());
+  const auto lines = lines_of(figure_csv(f));
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines[0], "series,tau_s,adev_rad_per_s,adev_rad_per_s_ci_low,adev_rad_per_s_ci_high");
+  std::size_t points = 0;
+  for (const Series& s : f.plot.series) points += s.x.size();
+  EXPECT_EQ(lines.size(), 1 + points + f.plot.points.size());
+  // The first data row is the first OADEV point with its interval, round-trip exact.
+  const DeviationData d = gyro_curve();
+  std::ostringstream expected;
+  EXPECT_EQ(lines[1].substr(0, lines[1].find(',')), "gyro_x oadev");
+  std::vector<double> cells;
+  std::istringstream row(lines[1].substr(lines[1].find(',') + 1));
+  for (std::string cell; std::getline(row, cell, ',');) cells.push_back(std::stod(cell));
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_EQ(cells[0], d.tau_s[0]);
+  EXPECT_EQ(cells[1], d.deviation[0]);
+  EXPECT_EQ(cells[2], d.ci_low[0]);
+  EXPECT_EQ(cells[3], d.ci_high[0]);
+  EXPECT_EQ(lines.back().rfind("readoff: x K,3,", 0), 0u) << lines.back();
+}
+
+TEST(DriftFigure, ThreeSigmaIsThreeTimesTheDrms) {
+  DriftData d;
+  d.time_s = {1, 10, 100};
+  d.predicted_drms_m = {0.01, 0.5, 40};
+  d.recorded_rms_m = {0.012, 0.4, 45};
+  d.segment_time_s = {{1, 10, 100}, {1, 10, 100}};
+  d.segment_horizontal_m = {{0.01, 0.3, 30}, {0.02, 0.6, 60}};
+  const Figure f = drift_figure(d);
+  const Series* one = find_series(f, "predicted 1 sigma");
+  const Series* three = find_series(f, "predicted 3 sigma");
+  ASSERT_TRUE(one && three);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(three->y[i], 3.0 * one->y[i]);
+  EXPECT_EQ(f.plot.series.front().name, "recorded segments (2)");
+  EXPECT_EQ(f.plot.series[1].name, "");  // one legend entry for all segments
+  EXPECT_TRUE(check_xml(render_svg(f.plot)).ok);
+}
+
+TEST(IntervalFigure, OneStemPerNonEmptyBinAndOneBinShowsTheStep) {
+  const Figure f =
+      interval_figure({0.0098, 0.0099, 0.0100}, {0.0099, 0.0100, 0.0101}, {5, 0, 995}, 0.01);
+  const Series* h = find_series(f, "histogram");
+  ASSERT_NE(h, nullptr);
+  ASSERT_EQ(h->x.size(), 2u);  // the empty bin has no stem
+  EXPECT_DOUBLE_EQ(h->x[0], 9.85);
+  EXPECT_EQ(h->y[0] + h->y[1], 1000.0);
+  EXPECT_EQ(h->y_low, (std::vector<double>{0.0, 0.0}));  // from the axis bottom
+  EXPECT_EQ(h->y_high, h->y);
+  const auto lines = lines_of(figure_csv(f));
+  EXPECT_EQ(lines[0], "series,interval_ms,count");
+  EXPECT_EQ(lines[1], "histogram," + shortest_number_text(h->x[0]) + ",5");
+  const Figure one = interval_figure({0.02 - 1e-8}, {0.02 + 1e-8}, {7}, 0.02);
+  ASSERT_TRUE(one.plot.x.min && one.plot.x.max);
+  EXPECT_NEAR(*one.plot.x.min, 18.0, 1e-9);
+  EXPECT_NEAR(*one.plot.x.max, 22.0, 1e-9);
+  EXPECT_TRUE(check_xml(render_svg(one.plot)).ok);
+  EXPECT_THROW(interval_figure({0.0}, {}, {1}, 0.01), InputError);
+}
+
+TEST(GapsFigure, NoGapsIsStillAValidPlot) {
+  const Figure none = gaps_figure({}, {}, 3600.0, 0);
+  EXPECT_NE(none.plot.title.find("none found"), std::string::npos);
+  EXPECT_TRUE(check_xml(render_svg(none.plot)).ok);
+  const Figure some = gaps_figure({10.0, 7200.0}, {0.5, 3.0}, 10800.0, 5);
+  EXPECT_NE(some.caption.find("only the first 2 of 5"), std::string::npos);
+  EXPECT_DOUBLE_EQ(some.plot.series[0].x[1], 2.0);  // hours
+}
+
+// --------------------------------------------------------------------------------- HTML page
+
+/// The <svg>…</svg> elements of an HTML text.
+std::vector<std::string> svg_elements(const std::string& html) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  while ((at = html.find("<svg", at)) != std::string::npos) {
+    const std::size_t end = html.find("</svg>", at);
+    if (end == std::string::npos) break;
+    out.push_back(html.substr(at, end + 6 - at));
+    at = end + 6;
+  }
+  return out;
+}
+
+TEST(HtmlPage, SectionsTablesFiguresAndEscaping) {
+  ReportPage page;
+  page.title = "imunoise report — <rec> & \"x\"";
+  page.facts = {{"samples", "100"}};
+  PageSection s;
+  s.id = "summary";
+  s.heading = "Summary";
+  s.tables.push_back({"summary-table", "cap", {"a", "b"}, {{"1.5", "x<y"}, {"-2", "z"}}});
+  Figure f = drift_figure({{1, 2}, {1, 2}, {}, {}, {}});
+  s.figures.push_back({f.name, render_svg(f.plot), "cap & more", {{"data", "plots/d.csv"}}});
+  s.code_lines = {"imunoise analyze 'a b.csv' -o out"};
+  page.sections.push_back(s);
+  const std::string html = render_html(page);
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("<title>imunoise report — &lt;rec&gt; &amp; &quot;x&quot;</title>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<table id=\"summary-table\">"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"num\">1.5</td><td>x&lt;y</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"num\">-2</td>"), std::string::npos);
+  EXPECT_NE(html.find("<figure id=\"fig-drift-horizontal\">"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"plots/d.csv\">data</a>"), std::string::npos);
+  EXPECT_NE(html.find("<section id=\"summary\">"), std::string::npos);
+  EXPECT_NE(html.find("imunoise analyze 'a b.csv' -o out"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);  // no script, no external resource
+  EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org"));
+  const auto svgs = svg_elements(html);
+  ASSERT_EQ(svgs.size(), 1u);
+  const auto check = check_xml(svgs[0]);
+  EXPECT_TRUE(check.ok) << check.message;
+  // The whole page nests: every opened section/figure/table is closed.
+  for (const char* tag : {"section", "figure", "table", "tbody", "pre"}) {
+    std::size_t open = 0, close = 0, at = 0;
+    while ((at = html.find(std::string("<") + tag, at)) != std::string::npos) ++open, ++at;
+    at = 0;
+    while ((at = html.find(std::string("</") + tag + ">", at)) != std::string::npos) ++close, ++at;
+    EXPECT_EQ(open, close) << tag;
+  }
+}
+
+TEST(HtmlPage, RowLengthMismatchIsAnError) {
+  ReportPage page;
+  PageSection s;
+  s.tables.push_back({"t", "", {"a", "b"}, {{"1"}}});
+  page.sections.push_back(s);
+  EXPECT_THROW(render_html(page), InputError);
+}
+
+}  // namespace
+}  // namespace imunoise::report
