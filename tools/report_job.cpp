@@ -164,7 +164,7 @@ report::Table summary_table(const models::NoiseModel& model) {
       std::vector<std::string> row{axis.name, term_label(term, axis.gyro)};
       if (e.identified) {
         row.push_back(num(e.value));
-        row.push_back("[" + num(e.ci_low, 3) + ", " + num(e.ci_high, 3) + "]");
+        row.push_back("[" + num(e.ci_low) + ", " + num(e.ci_high) + "]");
       } else {
         row.push_back("—");
         row.push_back(e.ci_high > 0.0 ? "< " + num(e.ci_high, 2) : "—");
@@ -172,7 +172,7 @@ report::Table summary_table(const models::NoiseModel& model) {
       row.push_back(std::string(models::term_si_unit(term, axis.gyro)));
       if (e.identified) {
         row.push_back(num(e.value * f));
-        row.push_back("[" + num(e.ci_low * f, 3) + ", " + num(e.ci_high * f, 3) + "]");
+        row.push_back("[" + num(e.ci_low * f) + ", " + num(e.ci_high * f) + "]");
       } else {
         row.push_back("—");
         row.push_back(e.ci_high > 0.0 ? "< " + num(e.ci_high * f, 2) : "—");
