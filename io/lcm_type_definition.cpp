@@ -27,6 +27,10 @@ constexpr std::size_t kMaxDefinitionBytes = std::size_t{1} << 20;
 // per-member dimension array small.
 constexpr std::size_t kMaxDimensions = 16;
 constexpr int kMaxNestingDepth = 32;
+// A fixed-size array named whole in add_field ("gyro" for double gyro[3]) gets one slot per
+// element; real selections are 3-vectors, the bound keeps a hostile dimension from
+// allocating billions of slots.
+constexpr std::int64_t kMaxWholeArrayElements = 4096;
 constexpr std::uint64_t kFingerprintBytes = 8;
 
 // ---------------------------------------------------------------------------------------------
@@ -605,7 +609,12 @@ std::vector<std::uint64_t> min_encoded_sizes(const LcmTypeFile& file) {
     for (const LcmMember& m : file.structs[index].members) {
       std::uint64_t count = 1;
       for (const LcmDimension& d : m.dimensions) {
-        count = d.variable ? 0 : std::min<std::uint64_t>(count * d.fixed_size, 1ull << 40);
+        // Saturating: [2^20][2^20][2^24] must not wrap to 0 (a struct "of no bytes" is skipped).
+        const auto size = static_cast<std::uint64_t>(d.fixed_size);
+        count = d.variable ? 0
+                : size != 0 && count > (1ull << 40) / size
+                    ? 1ull << 40
+                    : std::min<std::uint64_t>(count * size, 1ull << 40);
       }
       const std::uint64_t each =
           m.primitive ? info(*m.primitive).bytes : self(self, m.struct_index);
@@ -800,6 +809,14 @@ std::vector<std::size_t> LcmFieldDecoder::add_field(const std::string& path) {
       throw fail("'" + m.name + "' is a string, not a number");
     std::vector<std::vector<std::int64_t>> elements;
     if (whole_array) {
+      // One slot (and name) per element is allocated here, before any message is seen: a
+      // huge dimension in a hostile definition must not exhaust memory.
+      if (m.dimensions[0].fixed_size > kMaxWholeArrayElements) {
+        throw fail("'" + m.name + "' has " + m.dimensions[0].size_text +
+                   " elements; a whole array selects at most " +
+                   std::to_string(kMaxWholeArrayElements) + " (name its elements, e.g. " + m.name +
+                   "[0])");
+      }
       for (std::int64_t i = 0; i < m.dimensions[0].fixed_size; ++i) elements.push_back({i});
     } else {
       elements.push_back(seg.indices);

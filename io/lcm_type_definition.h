@@ -118,7 +118,8 @@ class LcmFieldDecoder {
 
   /// Selects the numeric field at `path` ("gyro[1]", "imu.accel[2]", "grid[1][0]") and returns
   /// its slot; a fixed-size 1-D array named whole ("gyro" for `double gyro[3]`) selects every
-  /// element, one slot each, in order. Throws InputError when the path names no numeric field
+  /// element, one slot each, in order (at most 4096 elements; a larger array is an InputError
+  /// asking for its elements by index). Throws InputError when the path names no numeric field
   /// (unknown member — the message lists the struct's members —, string, struct, wrong number
   /// of indices, index beyond a fixed dimension).
   std::vector<std::size_t> add_field(const std::string& path);

@@ -73,10 +73,10 @@ IntervalHistogram interval_histogram(const std::vector<double>& intervals, doubl
   }
   for (double d : intervals) {
     if (!(d > 0.0 && d <= gap_limit)) continue;
-    const auto b = one_bin
-                       ? 0
-                       : std::clamp<std::int64_t>(
-                             static_cast<std::int64_t>(std::floor((d - lo) / width)), 0, bins - 1);
+    // Clamped as a double: with stamps near the double range an interval is inf and the
+    // bin position NaN, which no integer conversion may see.
+    const double x = one_bin ? 0.0 : std::floor((d - lo) / width);
+    const int b = !(x > 0.0) ? 0 : x >= bins - 1 ? bins - 1 : static_cast<int>(x);
     ++h.counts[static_cast<std::size_t>(b)];
   }
   return h;
@@ -121,7 +121,15 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
         t.gaps.push_back(GapRecord{locate(i + 1, options), time_s[i] - time_s[0], d});
       }
       t.longest_gap_s = std::max(t.longest_gap_s, d);
-      t.missing_samples += std::max<std::int64_t>(0, std::llround(d / median) - 1);
+      // Saturating: d / median may be beyond int64 (or inf) for absurd stamps, where llround
+      // has no defined result.
+      const double missing = std::round(d / median) - 1.0;
+      const std::int64_t add = !(missing > 0.0)    ? 0
+                               : missing >= 0x1p63 ? std::numeric_limits<std::int64_t>::max()
+                                                   : static_cast<std::int64_t>(missing);
+      if (__builtin_add_overflow(t.missing_samples, add, &t.missing_samples)) {
+        t.missing_samples = std::numeric_limits<std::int64_t>::max();
+      }
     } else {
       const double dev = d - median;
       sum_sq += dev * dev;

@@ -53,7 +53,7 @@ struct TimingReport {
   double mean_rate_hz = 0.0;         ///< (n − 1) / duration
   std::int64_t gap_count = 0;        ///< intervals > gap_factor × median
   double longest_gap_s = 0.0;        ///< longest such interval [s]
-  std::int64_t missing_samples = 0;  ///< Σ over gaps of round(gap / median) − 1
+  std::int64_t missing_samples = 0;  ///< Σ over gaps of round(gap / median) − 1 (saturates)
   std::optional<SampleLocation> first_gap;  ///< sample after the first gap
   std::int64_t non_monotonic_count = 0;     ///< intervals < 0
   std::optional<SampleLocation> first_non_monotonic;

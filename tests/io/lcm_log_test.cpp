@@ -459,6 +459,26 @@ TEST(LcmLog, ExtremeTimeStampsDoNotOverflow) {
   EXPECT_GT(rec.time_s[2], rec.time_s[1]);
 }
 
+// Fuzz regression (sampling report): 1 µs steps, then two gaps of ~9.2e12 s. gap / median is
+// beyond int64, where llround has no defined result, and the missing-sample sum overflowed
+// (UBSan abort; -2 in a plain build). The count saturates.
+TEST(LcmLog, MissingSamplesOfAbsurdGapsSaturate) {
+  const auto path = temp_log("absurd_gaps.lcmlog");
+  LogWriter writer(path);
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  const std::int64_t stamps[] = {kMin, kMin + 1, kMin + 2, kMin + 3, 0, kMax};
+  for (int i = 0; i < 6; ++i) {
+    auto m = sample(i, false, false);
+    m.utime = stamps[i];
+    writer.write("IMU", m);
+  }
+  writer.close();
+  const Recording rec = read_lcm_imu_log(path.string(), "IMU");
+  EXPECT_EQ(rec.report.timing.gap_count, 2);
+  EXPECT_EQ(rec.report.timing.missing_samples, kMax);
+}
+
 // Random corruptions of a valid log (fixed seed): every call either succeeds or throws
 // InputError; nothing else escapes, nothing crashes (run under the sanitizers too).
 TEST(LcmLog, NeverCrashesOnCorruptedBytes) {

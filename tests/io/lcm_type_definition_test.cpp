@@ -945,5 +945,40 @@ TEST(LcmUserType, BadMappingsAreInputErrors) {
       HasSubstr("no gyro fields given"));
 }
 
+// --- fuzz regressions (fuzz/fuzz_lcm_type_definition) ---------------------------------------
+
+// A whole fixed-size array in a field path got one slot (and a name string) per element before
+// any check: `double g[1000000000]` named whole ran for minutes and exhausted memory.
+TEST(LcmTypeFuzzRegression, HugeWholeArrayFieldIsAnInputErrorNotAnAllocation) {
+  const LcmTypeFile file =
+      parse_lcm_type_definition("struct a { double g[1000000000]; double h[4096]; }", "big.lcm");
+  LcmFieldDecoder d(file, 0);
+  EXPECT_THAT(test::error_of([&] { d.add_field("g"); }),
+              HasSubstr("big.lcm: field 'g': 'g' has 1000000000 elements; a whole array selects "
+                        "at most 4096 (name its elements, e.g. g[0])"));
+  EXPECT_EQ(d.slot_count(), 0u);
+  EXPECT_EQ(d.add_field("g[999999999]").size(), 1u);  // one element is fine
+  EXPECT_EQ(d.add_field("h").size(), 4096u);          // the bound itself is allowed
+}
+
+// The minimum encoded size of a struct wrapped to 0 for dimensions whose product is 2^64
+// ([2^20][2^20][2^24]), so a member of that struct type was skipped as "encodes to nothing" and
+// the following members were read from its bytes; the message must fail to decode instead.
+TEST(LcmTypeFuzzRegression, DimensionProductBeyond64BitsDoesNotMakeAStructEmpty) {
+  const LcmTypeFile file = parse_lcm_type_definition(
+      "struct huge_t { int8_t x[1048576][1048576][16777216]; }\n"
+      "struct outer_t { huge_t inner; double z; }\n",
+      "wrap.lcm");
+  LcmFieldDecoder d(file, file.find_struct("outer_t"));
+  std::vector<unsigned char> message(16, 0);
+  for (int b = 0; b < 8; ++b) {
+    message[b] = static_cast<unsigned char>(d.fingerprint() >> (56 - 8 * b));
+  }
+  std::vector<LcmFieldValue> values;
+  std::string error;
+  EXPECT_FALSE(d.decode_all(message, values, error));
+  EXPECT_THAT(error, HasSubstr("'inner' holds 1 structs of at least"));
+}
+
 }  // namespace
 }  // namespace imunoise::io

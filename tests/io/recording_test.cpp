@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "common/errors.h"
@@ -280,6 +281,21 @@ TEST(RequireMinSamples, NamesFileCountAndPurpose) {
   EXPECT_NO_THROW(require_min_samples(rec, 3, "Allan deviation"));
   EXPECT_THAT(error_of([&] { require_min_samples(rec, 100, "Allan deviation"); }),
               HasSubstr("rec.csv: too few samples: 3 (need at least 100 for Allan deviation)"));
+}
+
+// --- fuzz regressions (fuzz/fuzz_csv_reader) ---------------------------------------------------
+
+// Time stamps whose gaps are beyond int64 multiples of the median interval (found by
+// fuzz_csv_reader as a UBSan signed overflow in the sampling report): read and reported, with
+// the missing-sample count saturated.
+TEST(ReadRecordingFuzzRegression, AbsurdGapsAreReportedWithoutOverflow) {
+  const auto path = fixture("absurd_gaps.csv",
+                            "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n"
+                            "0,1,1,1\n1e-300,1,1,1\n2e-300,1,1,1\n3e-300,1,1,1\n"
+                            "1e300,1,1,1\n2e300,1,1,1\n");
+  const Recording rec = read_recording(path, {});
+  EXPECT_EQ(rec.report.timing.gap_count, 2);
+  EXPECT_EQ(rec.report.timing.missing_samples, std::numeric_limits<std::int64_t>::max());
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <vector>
@@ -300,6 +301,26 @@ TEST(IntervalHistogram, GapListIsCappedButEveryGapIsCounted) {
   EXPECT_EQ(r.gap_count, static_cast<std::int64_t>(gaps));
   EXPECT_EQ(r.gaps.size(), kMaxListedGaps);
   EXPECT_EQ(r.missing_samples, static_cast<std::int64_t>(4 * gaps));
+}
+
+// --- fuzz regressions (fuzz/fuzz_csv_reader) ---------------------------------------------------
+
+// Stamps near the double range: gap / median beyond int64 made llround's result undefined and
+// the sum of missing samples a signed overflow (wrapped to -2 here); an infinite interval put a
+// NaN bin position through an integer conversion. Both were UBSan aborts in the fuzz build.
+TEST(TimingFuzzRegression, MissingSamplesOfAbsurdGapsSaturate) {
+  const TimingReport r =
+      analyze_timing(std::vector<double>{0, 1e-300, 2e-300, 3e-300, 1e300, 2e300});
+  EXPECT_EQ(r.gap_count, 2);
+  EXPECT_EQ(r.missing_samples, std::numeric_limits<std::int64_t>::max());
+}
+
+TEST(TimingFuzzRegression, InfiniteIntervalLandsInAHistogramBin) {
+  const TimingReport r = analyze_timing(std::vector<double>{-1.7e308, 1.7e308, 1.7e308, 1.7e308});
+  std::int64_t counted = 0;
+  for (const auto c : r.interval_histogram.counts) counted += c;
+  EXPECT_EQ(counted, 1);  // the infinite interval; the two 0-s intervals are duplicates
+  EXPECT_EQ(r.duplicate_count, 2);
 }
 
 }  // namespace
