@@ -299,4 +299,90 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
   return curve;
 }
 
+bool is_poolable(DeviationType type) {
+  switch (type) {
+    case DeviationType::adev:
+    case DeviationType::oadev:
+    case DeviationType::mdev:
+    case DeviationType::tdev:
+    case DeviationType::hdev:
+    case DeviationType::ohdev:
+      return true;
+    default:
+      return false;
+  }
+}
+
+double curve_edf(const DeviationCurve& curve, int alpha, std::int64_t m) {
+  if (curve.piece_n_phase.empty()) return edf_for(curve.type, alpha, m, curve.n_phase);
+  // Independent pieces: the χ² variables add, and so do their dof (theory.md §3.1).
+  double edf = 0.0;
+  for (std::int64_t n_k : curve.piece_n_phase) {
+    if (estimator_term_count(curve.type, n_k, m) >= 1) edf += edf_for(curve.type, alpha, m, n_k);
+  }
+  return edf;
+}
+
+DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>> phases,
+                                        double tau0_s,
+                                        std::span<const std::int64_t> averaging_factors,
+                                        const DeviationOptions& options) {
+  IMUNOISE_CHECK(!phases.empty(), InputError, "pooled deviation: no pieces");
+  if (phases.size() == 1) {
+    return compute_deviation(phases.front(), tau0_s, averaging_factors, options);
+  }
+  IMUNOISE_CHECK(is_poolable(options.type), InputError,
+                 std::string(to_string(options.type)) +
+                     " cannot be pooled over pieces (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV can)");
+  IMUNOISE_CHECK(options.confidence > 0.0 && options.confidence < 1.0, InputError,
+                 "confidence must be in (0, 1), got " + std::to_string(options.confidence));
+  detail::check_sample_period(tau0_s);
+  DeviationCurve curve;
+  curve.type = options.type;
+  curve.tau0_s = tau0_s;
+  curve.confidence = options.confidence;
+  std::size_t longest = 0;
+  for (std::size_t k = 0; k < phases.size(); ++k) {
+    const auto n_k = static_cast<std::int64_t>(phases[k].size());
+    curve.piece_n_phase.push_back(n_k);
+    curve.n_phase += n_k;
+    if (phases[k].size() > phases[longest].size()) longest = k;
+  }
+  const std::int64_t max_m =
+      max_averaging_factor(options.type, static_cast<std::int64_t>(phases[longest].size()));
+  for (std::int64_t m : averaging_factors) {
+    IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
+                   "too few samples for the requested tau: m = " + std::to_string(m) + " (" +
+                       std::string(to_string(options.type)) +
+                       " allows m <= " + std::to_string(max_m) + " on the longest piece of " +
+                       std::to_string(phases[longest].size()) + " phase samples)");
+  }
+  curve.points.reserve(averaging_factors.size());
+  for (std::int64_t m : averaging_factors) {
+    DeviationPoint p;
+    p.m = m;
+    p.tau_s = tau_of(options.type, m, tau0_s);
+    p.alpha = options.alpha ? *options.alpha : noise_alpha_for(options.type, phases[longest], m);
+    // Σ n_k σ²_k = Σ (squared differences)/norm: the pooled mean over all terms. Compensated,
+    // as the per-piece kernels are (theory.md §2 "Numerics").
+    detail::CompensatedSum weighted;
+    std::int64_t terms = 0;
+    for (const auto& phase : phases) {
+      const auto n_k = static_cast<std::int64_t>(phase.size());
+      if (estimator_term_count(options.type, n_k, m) < 1) continue;
+      const VarianceEstimate v = allan_family_variance(options.type, phase, m, tau0_s);
+      weighted.add(static_cast<double>(v.n_terms) * v.variance);
+      terms += v.n_terms;
+    }
+    p.n_terms = terms;
+    p.value = std::sqrt(std::max(weighted.value() / static_cast<double>(terms), 0.0));
+    p.edf = curve_edf(curve, p.alpha, m);
+    const DeviationInterval ci = deviation_interval(p.value, p.edf, options.confidence);
+    p.ci_low = ci.low;
+    p.ci_high = ci.high;
+    curve.points.push_back(p);
+  }
+  return curve;
+}
+
 }  // namespace imunoise::analysis

@@ -63,9 +63,12 @@ struct DeviationOptions {
 struct DeviationCurve {
   DeviationType type = DeviationType::oadev;
   double tau0_s = 0.0;
-  std::int64_t n_phase = 0;  ///< M, number of phase samples
+  std::int64_t n_phase = 0;  ///< M, number of phase samples (pooled curves: Σ M_k)
   double confidence = 0.683;
   std::vector<DeviationPoint> points;
+  /// Pooled curves (compute_pooled_deviation) only: M_k of each independent piece; empty for
+  /// a curve of one record. curve_edf() sums the EDF over these.
+  std::vector<std::int64_t> piece_n_phase;
 };
 
 /// Computes TYPE at every averaging factor of AVERAGING_FACTORS (each must satisfy
@@ -74,5 +77,29 @@ struct DeviationCurve {
 DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
                                  std::span<const std::int64_t> averaging_factors,
                                  const DeviationOptions& options);
+
+/// The statistics compute_pooled_deviation() can pool: those whose estimate is the mean of
+/// squared differences, each inside one piece (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV).
+bool is_poolable(DeviationType type);
+
+/// TYPE over independent pieces of one record (the gap-free pieces of a recording with
+/// time-stamp gaps), each piece's PHASES from its own rate samples. At every averaging
+/// factor m, every piece with at least one term contributes:
+///   σ²(m) = Σ_k n_k·σ²_k(m) / Σ_k n_k,
+/// n_k its number of terms — exactly the estimator of theory.md §2 over all differences that
+/// do not straddle a gap. The pieces are independent, so EDF = Σ_k EDF_k (each Greenhall–
+/// Riley at the piece's M_k) and the interval follows from it as for one record (§3.1).
+/// The noise type α per τ is options.alpha, else identified on the longest piece (§3.4).
+/// Each m must satisfy 1 ≤ m ≤ max_averaging_factor(type, longest M_k). One piece gives
+/// exactly compute_deviation(). Throws InputError for a type that cannot be pooled or no
+/// pieces, AnalysisError for an m out of range.
+DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>> phases,
+                                        double tau0_s,
+                                        std::span<const std::int64_t> averaging_factors,
+                                        const DeviationOptions& options);
+
+/// EDF of a point of CURVE at averaging factor M for noise type ALPHA: edf_for() at the
+/// curve's n_phase, or for a pooled curve the sum over its pieces that hold a term at M.
+double curve_edf(const DeviationCurve& curve, int alpha, std::int64_t m);
 
 }  // namespace imunoise::analysis

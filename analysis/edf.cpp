@@ -119,7 +119,10 @@ GreenhallSetup greenhall_setup(const char* where, int alpha, int d, std::int64_t
   GreenhallSetup g{};
   g.f = static_cast<Real>(f);
   g.s = static_cast<Real>(s);
-  g.m_terms = 1 + s * (n_phase - l) / m;  // non-negative operands: integer division = floor
+  // S ∈ {1, m}: S(M − L)/m is M − L exactly when overlapping, so the product S·(M − L) — which
+  // exceeds 2^63 for M ≳ 6·10^9 at the largest m — is never formed. Non-negative operands:
+  // integer division = floor.
+  g.m_terms = 1 + (overlapping ? n_phase - l : (n_phase - l) / m);
   g.j = std::min(g.m_terms, (d + 1) * s);
   g.r = static_cast<Real>(g.m_terms) / g.s;
   return g;

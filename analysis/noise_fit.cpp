@@ -479,7 +479,7 @@ std::vector<FitPoint> fit_points(const DeviationCurve& curve) {
   out.reserve(curve.points.size());
   for (const DeviationPoint& p : curve.points) {
     double cap = 0.0;
-    for (int alpha : {0, -1, -2}) cap = std::max(cap, edf_for(type, alpha, p.m, curve.n_phase));
+    for (int alpha : {0, -1, -2}) cap = std::max(cap, curve_edf(curve, alpha, p.m));
     out.push_back({p.tau_s, p.value * p.value, std::min(p.edf, cap)});
   }
   return out;

@@ -348,6 +348,70 @@ Spectrum welch_psd(std::span<const double> x, double sample_rate_hz, const Welch
   return estimator.estimate(x, sample_rate_hz);
 }
 
+Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, double sample_rate_hz,
+                          const WelchOptions& options, std::size_t* pieces_used) {
+  std::size_t longest = 0;
+  for (const auto& p : pieces) longest = std::max(longest, p.size());
+  std::size_t length = options.segment_length;
+  if (length == 0) {
+    // The automatic length of welch_psd for the longest piece.
+    IMUNOISE_CHECK(longest >= 16, InputError,
+                   "welch: the longest piece has " + std::to_string(longest) +
+                       " samples, too short (automatic segment length needs >= 16)");
+    length = 16;
+    while (length * 2 <= longest / 8) length *= 2;
+  }
+  WelchOptions resolved = options;
+  resolved.segment_length = length;
+  WelchEstimator estimator(length, resolved);
+  std::vector<Spectrum> parts;
+  std::size_t total_samples = 0;
+  for (const auto& p : pieces) {
+    if (p.size() < length) continue;
+    parts.push_back(estimator.estimate(p, sample_rate_hz));
+    total_samples += p.size();
+  }
+  if (pieces_used != nullptr) *pieces_used = parts.size();
+  IMUNOISE_CHECK(
+      !parts.empty(), InputError,
+      "welch: no piece is as long as one segment of " + std::to_string(length) + " samples");
+  if (parts.size() == 1) return std::move(parts.front());
+
+  Spectrum out;
+  out.segment_length = length;
+  out.resolution_hz = parts.front().resolution_hz;
+  out.frequency_hz = parts.front().frequency_hz;
+  const std::size_t bins = out.frequency_hz.size();
+  out.density.assign(bins, 0.0);
+  out.power_covariance.assign(bins, 0.0);
+  std::vector<double> inverse_dof(bins, 0.0);  // Σ_k K_k²/ν_k
+  for (const Spectrum& s : parts) {
+    const double k = static_cast<double>(s.segments);
+    out.segments += s.segments;
+    for (std::size_t j = 0; j < bins; ++j) {
+      out.density[j] += k * s.density[j];
+      out.power_covariance[j] += k * s.power_covariance[j];
+      inverse_dof[j] += k * k / s.dof[j];
+    }
+  }
+  const double k_total = static_cast<double>(out.segments);
+  out.dof.resize(bins);
+  for (std::size_t j = 0; j < bins; ++j) {
+    out.density[j] /= k_total;
+    out.power_covariance[j] /= k_total;
+    out.dof[j] = k_total * k_total / inverse_dof[j];
+    out.integrated_power += out.density[j] * out.resolution_hz;
+  }
+  // Mean square over all samples of the pieces used, each piece detrended on its own.
+  std::size_t part = 0;
+  for (const auto& p : pieces) {
+    if (p.size() < length) continue;
+    out.sample_variance += static_cast<double>(p.size()) * parts[part++].sample_variance;
+  }
+  out.sample_variance /= static_cast<double>(total_samples);
+  return out;
+}
+
 Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
   IMUNOISE_CHECK(
       bins_per_decade >= 1, InputError,

@@ -117,6 +117,18 @@ class WelchEstimator {
 Spectrum welch_psd(std::span<const double> x, double sample_rate_hz,
                    const WelchOptions& options = {});
 
+/// Welch estimate pooled over independent pieces of one record (the gap-free pieces of a
+/// recording with time-stamp gaps): every piece at the same segment length L (options'
+/// value, else the automatic L of the longest piece), the segments of all pieces averaged
+/// together — i.e. the piece spectra weighted by their segment counts K_k. Pieces shorter
+/// than L are left out. Raw dof ν = K²/Σ_k(K_k²/ν_k) (the variance of that weighted mean of
+/// independent estimates), power_covariance Σ_k K_k·g_k/K with segments = K = Σ K_k, so
+/// log_bin() gives the same dof model as for one record. One piece gives exactly welch_psd.
+/// @param[out] pieces_used number of pieces that entered (optional)
+/// @throws InputError when no piece is at least one segment long, or as welch_psd().
+Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, double sample_rate_hz,
+                          const WelchOptions& options = {}, std::size_t* pieces_used = nullptr);
+
 /// Log-binned spectrum (theory.md §5.2): the DC bin is dropped; raw bin j goes to the bin
 /// ⌊b·log10 f_j⌋ (edges at 10^{k/b} Hz, so spectra of different records share edges); the
 /// raw S₁ are averaged as linear power; empty bins are omitted. The frequency is the

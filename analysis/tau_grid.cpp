@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "analysis/total_family.h"
 #include "common/errors.h"
@@ -102,7 +103,13 @@ std::int64_t estimator_term_count(DeviationType type, std::int64_t n_phase, std:
       break;
     case DeviationType::theo1:
       // SP 1065 eq. 30: (M − m) positions × m/2 lags; m even, m ≤ M − 1.
-      n = (m % 2 == 0 && m <= M - 1) ? (M - m) * (m / 2) : 0;
+      // The product reaches 2^63 near M ≈ 10^10 at the largest m: saturate instead of wrapping.
+      if (m % 2 == 0 && m <= M - 1) {
+        const std::int64_t half = m / 2;
+        n = M - m > std::numeric_limits<std::int64_t>::max() / half
+                ? std::numeric_limits<std::int64_t>::max()
+                : (M - m) * half;
+      }
       break;
     case DeviationType::totdev:
       // The reflected extension provides neighbours for every interior point, but it is only
@@ -171,12 +178,16 @@ std::vector<std::int64_t> averaging_factors(const TauGridSpec& spec, DeviationTy
                               std::to_string(m));
         }
         if (m > max_m) {
-          throw AnalysisError("too few samples for the requested tau: m = " + std::to_string(m) +
-                              " needs at least " + std::to_string(m * stop_ratio(type)) +
-                              " phase samples for " + std::string(to_string(type)) +
-                              " (stop ratio " + std::to_string(stop_ratio(type)) +
-                              "), the data has " + std::to_string(n_phase) +
-                              "; the largest usable m is " + std::to_string(max_m));
+          // m comes from the command line: m·r may not fit in 64 bits.
+          const std::int64_t ratio = stop_ratio(type);
+          const std::string needed = m <= std::numeric_limits<std::int64_t>::max() / ratio
+                                         ? std::to_string(m * ratio)
+                                         : std::string("more than 2^63");
+          throw AnalysisError(
+              "too few samples for the requested tau: m = " + std::to_string(m) +
+              " needs at least " + needed + " phase samples for " + std::string(to_string(type)) +
+              " (stop ratio " + std::to_string(stop_ratio(type)) + "), the data has " +
+              std::to_string(n_phase) + "; the largest usable m is " + std::to_string(max_m));
         }
         out.push_back(m);
       }

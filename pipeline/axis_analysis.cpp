@@ -23,25 +23,50 @@ std::string number_text(double value) {
   return out.str();
 }
 
-/// Refuses records the estimator cannot answer, with the reason in the message.
-void check_rate_samples(const std::string& name, std::span<const double> rate) {
-  if (rate.size() < 16) {
-    throw AnalysisError(name + ": too few samples for any τ range (" + std::to_string(rate.size()) +
+/// Range of max − min of a channel's samples (SI) that the squares of the analysis keep
+/// finite and normal (see check_rate_samples).
+constexpr double kMinSpread = 1e-40;
+constexpr double kMaxSpread = 1e40;
+
+/// Refuses records the estimator cannot answer, with the reason in the message. PIECES are
+/// the gap-free pieces of the record (one for a record without gaps); sample indices in the
+/// message count from the start of the first piece.
+void check_rate_samples(const std::string& name, std::span<const std::span<const double>> pieces) {
+  std::size_t total = 0;
+  for (const auto& piece : pieces) total += piece.size();
+  if (total < 16) {
+    throw AnalysisError(name + ": too few samples for any τ range (" + std::to_string(total) +
                         "; a fit needs at least 16)");
   }
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
-  for (std::size_t i = 0; i < rate.size(); ++i) {
-    if (!std::isfinite(rate[i])) {
-      throw AnalysisError(name + ": sample " + std::to_string(i) +
-                          " is not finite (NaN/Inf); drop such rows when reading the recording");
+  std::size_t offset = 0;
+  for (const auto& rate : pieces) {
+    for (std::size_t i = 0; i < rate.size(); ++i) {
+      if (!std::isfinite(rate[i])) {
+        throw AnalysisError(name + ": sample " + std::to_string(offset + i) +
+                            " is not finite (NaN/Inf); drop such rows when reading the recording");
+      }
+      low = std::min(low, rate[i]);
+      high = std::max(high, rate[i]);
     }
-    low = std::min(low, rate[i]);
-    high = std::max(high, rate[i]);
+    offset += rate.size();
   }
   if (!(high > low)) {
     throw AnalysisError(name + ": the signal is constant (" + number_text(low) +
                         " in every sample); there is no noise to model");
+  }
+  // The estimators square the differences (σ², theory.md §2) and the fit squares σ² again
+  // in its weights ν/(2σ⁴) (§4.3): the spread must stay far inside the double range, or
+  // squares overflow to Inf or underflow to 0 and the outputs turn Inf/NaN. SI IMU noise is
+  // 1e-10 … 1e2; a spread outside 1e-40 … 1e40 is a unit mistake, not a sensor.
+  const double spread = high - low;
+  if (!std::isfinite(spread) || spread > kMaxSpread || spread < kMinSpread) {
+    throw AnalysisError(name + ": the samples span " + number_text(low) + " to " +
+                        number_text(high) + " (spread " + number_text(spread) +
+                        "), outside what the analysis can square in double precision (spread " +
+                        number_text(kMinSpread) + " to " + number_text(kMaxSpread) +
+                        " in SI units); check the column's unit");
   }
 }
 
@@ -98,7 +123,7 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
       curve.type == analysis::DeviationType::ohdev || curve.type == analysis::DeviationType::hdev;
   for (analysis::DeviationPoint& p : curve.points) {
     p.alpha = model_noise_alpha(c, p.tau_s, hadamard);
-    p.edf = analysis::edf_for(curve.type, p.alpha, p.m, curve.n_phase);
+    p.edf = analysis::curve_edf(curve, p.alpha, p.m);
     const analysis::DeviationInterval ci =
         analysis::deviation_interval(p.value, p.edf, curve.confidence);
     p.ci_low = ci.low;
@@ -126,7 +151,18 @@ double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
 
 AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
                           double tau0_s, int axis_index, const AxisAnalysisOptions& options) {
-  check_rate_samples(name, rate);
+  const std::span<const double> whole[] = {rate};
+  return analyze_axis_pieces(name, gyro, whole, tau0_s, axis_index, options);
+}
+
+AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
+                                 std::span<const std::span<const double>> pieces, double tau0_s,
+                                 int axis_index, const AxisAnalysisOptions& options) {
+  IMUNOISE_CHECK(!pieces.empty(), InputError, name + ": no samples to analyse");
+  check_rate_samples(name, pieces);
+  std::int64_t total_samples = 0;
+  for (const auto& piece : pieces) total_samples += static_cast<std::int64_t>(piece.size());
+  const bool pooled = pieces.size() > 1;
   const int replicates = options.bootstrap_replicates >= 2 ? options.bootstrap_replicates : 0;
   const std::int64_t units = 4 + replicates;  // see AxisAnalysisOptions::progress
   const auto progress = [&](std::string_view stage, std::int64_t done) {
@@ -134,8 +170,17 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   };
   progress("deviations", 0);
   AxisAnalysis out;
-  const std::vector<double> phase = analysis::phase_from_rate(rate, tau0_s);
-  const auto n_phase = static_cast<std::int64_t>(phase.size());
+  // One phase record per piece, each from its own mean (theory.md §2 "Numerics"); the grid
+  // is that of the longest piece, which bounds the largest m any piece can answer.
+  std::vector<std::vector<double>> phases;
+  std::vector<std::span<const double>> phase_spans;
+  phases.reserve(pieces.size());
+  std::int64_t n_phase = 0;
+  for (const auto& piece : pieces) {
+    phases.push_back(analysis::phase_from_rate(piece, tau0_s));
+    phase_spans.emplace_back(phases.back());
+    n_phase = std::max(n_phase, static_cast<std::int64_t>(phases.back().size()));
+  }
 
   // 1. Deviations with chi-square intervals at the reported confidence.
   analysis::DeviationOptions dev;
@@ -148,12 +193,12 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   dev.alpha = 0;
   const std::vector<std::int64_t> m_oadev =
       analysis::averaging_factors(options.grid, dev.type, n_phase);
-  out.oadev = analysis::compute_deviation(phase, tau0_s, m_oadev, dev);
+  out.oadev = analysis::compute_pooled_deviation(phase_spans, tau0_s, m_oadev, dev);
   progress("deviations", 1);
   dev.type = analysis::DeviationType::ohdev;
   const std::vector<std::int64_t> m_ohdev =
       analysis::averaging_factors(options.grid, dev.type, n_phase);
-  out.ohdev = analysis::compute_deviation(phase, tau0_s, m_ohdev, dev);
+  out.ohdev = analysis::compute_pooled_deviation(phase_spans, tau0_s, m_ohdev, dev);
   progress("fit", 2);
 
   // 2. The fit on OAVAR (σ² domain, theory.md §4.3).
@@ -183,7 +228,11 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   }
   out.slope = analysis::slope_readoff(taus, adevs);
   progress("PSD", 3);
-  const analysis::Spectrum raw = analysis::welch_psd(rate, 1.0 / tau0_s, options.welch);
+  // Pieces: segments of every piece at one length, averaged together (pieces shorter than a
+  // segment left out); one piece is exactly welch_psd.
+  std::size_t psd_pieces = 0;
+  const analysis::Spectrum raw =
+      analysis::pooled_welch_psd(pieces, 1.0 / tau0_s, options.welch, &psd_pieces);
   out.psd = analysis::log_bin(raw, options.psd_bins_per_decade);
   out.psd_readoff = analysis::psd_readoff(out.psd);
   out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s, 0.4 / tau0_s);
@@ -196,6 +245,15 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
   model.fit_tau_min_s = out.fit.tau_min_s;
   model.fit_tau_max_s = out.fit.tau_max_s;
   model.fit_note = out.fit.selection_note;
+  if (pooled) {
+    std::string note = "curves pooled over " + std::to_string(pieces.size()) +
+                       " gap-free pieces (PSD: " + std::to_string(psd_pieces) +
+                       " long enough for a Welch segment)";
+    if (options.bootstrap_replicates >= 2) {
+      note += "; the bootstrap simulates one record of the total length, an approximation";
+    }
+    model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") + note;
+  }
   std::array<Interval, 5> intervals{};
   std::string interval_method;
   std::vector<Interval> gm_sigma, gm_tau;
@@ -211,8 +269,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
       };
     }
     const BootstrapResult result =
-        bootstrap_fit(out.fit, points, m_oadev, static_cast<std::int64_t>(rate.size()), tau0_s,
-                      fit_options, boot);
+        bootstrap_fit(out.fit, points, m_oadev, total_samples, tau0_s, fit_options, boot);
     intervals = result.terms;
     gm_sigma = result.gauss_markov_sigma;
     gm_tau = result.gauss_markov_tau_c;

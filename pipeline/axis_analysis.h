@@ -59,6 +59,16 @@ struct AxisAnalysis {
 AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
                           double tau0_s, int axis_index, const AxisAnalysisOptions& options);
 
+/// analyze_axis over the independent gap-free PIECES of one record (`--gaps split`): OADEV
+/// and OHDEV pooled per τ over the pieces (analysis::compute_pooled_deviation: σ² weighted
+/// by the term counts, EDF summed), the Welch PSD pooled over pieces at one segment length
+/// (analysis::pooled_welch_psd), then the fit on the pooled curves as usual. The bootstrap
+/// simulates one record of the total length — an approximation the fit note states. One
+/// piece is exactly analyze_axis.
+AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
+                                 std::span<const std::span<const double>> pieces, double tau0_s,
+                                 int axis_index, const AxisAnalysisOptions& options);
+
 /// Noise type α (S_y ∝ f^α) of the term of C that dominates the AVAR (HADAMARD: HVAR) at τ.
 int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard);
 

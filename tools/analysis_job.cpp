@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "pipeline/gap_policy.h"
 #include "tools/progress.h"
 #include "tools/verbosity.h"
 
@@ -145,6 +147,14 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
   cmd.add_flag("--no-low-pass-check", s.no_low_pass_check,
                "keep the shortest tau even where the curve bends below the white-noise line")
       ->group(group);
+  cmd.add_option("--gaps", s.gaps,
+                 "time-stamp gaps: refuse (the statistics assume uniform sampling), "
+                 "split (analyse the gap-free pieces and pool them; pieces under " +
+                     std::to_string(pipeline::kMinPieceSamples) +
+                     " samples dropped) or interpolate (fill each gap linearly; gaps over 1 % "
+                     "of the record or 1000 samples refused)")
+      ->capture_default_str()
+      ->group(group);
 }
 
 std::vector<std::string> quality_findings(const io::SamplingReport& report) {
@@ -153,8 +163,7 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   if (t.gap_count > 0) {
     out.push_back(std::to_string(t.gap_count) + " time-stamp gap(s), longest " +
                   significant_number_text(t.longest_gap_s) + " s, about " +
-                  std::to_string(t.missing_samples) +
-                  " samples missing; the analysis assumes uniform sampling");
+                  std::to_string(t.missing_samples) + " samples missing");
   }
   if (t.non_monotonic_count > 0) {
     out.push_back(std::to_string(t.non_monotonic_count) + " non-monotonic time stamp(s)");
@@ -187,10 +196,124 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   return out;
 }
 
+std::string gap_refusal_message(const std::string& source, const io::TimingReport& timing) {
+  if (timing.gap_count <= 0) return {};
+  std::string what = std::to_string(timing.gap_count) + " time-stamp gap(s)";
+  if (timing.first_gap) {
+    what.append(", the first before sample ").append(std::to_string(timing.first_gap->index));
+    if (!timing.gaps.empty()) {
+      what.append(" (t = ")
+          .append(significant_number_text(timing.gaps.front().start_s, 9))
+          .append(" s, ")
+          .append(significant_number_text(timing.gaps.front().length_s))
+          .append(" s long)");
+    }
+  }
+  what.append(", the longest ")
+      .append(significant_number_text(timing.longest_gap_s))
+      .append(" s, about ")
+      .append(std::to_string(timing.missing_samples))
+      .append(
+          " samples missing; the analysis needs uniformly spaced samples: use --gaps split "
+          "(pool the gap-free pieces) or --gaps interpolate (fill linearly), or fix the "
+          "recording");
+  const std::int64_t line =
+      timing.first_gap && timing.first_gap->line ? *timing.first_gap->line : 0;
+  return located_message(source, line, 0, what);
+}
+
+namespace {
+
+/// How the samples of every channel reach analyze_axis_pieces under the gap policy.
+struct GapPlan {
+  pipeline::GapPolicy policy = pipeline::GapPolicy::refuse;
+  std::vector<pipeline::TimeGap> gaps;        ///< every gap (split, interpolate)
+  std::vector<pipeline::SampleRange> pieces;  ///< split: kept pieces; else empty
+  std::int64_t samples = 0;                   ///< samples analysed per channel
+  std::string note;                           ///< data-quality line ("" without gaps)
+};
+
+/// Applies the policy to the recording's gaps: refuses (InputError), or plans the split or
+/// the interpolation and words the data-quality line.
+GapPlan plan_gaps(const io::Recording& recording, const std::string& source,
+                  pipeline::GapPolicy policy, bool bootstrap) {
+  GapPlan plan;
+  plan.policy = policy;
+  const std::size_t n = recording.sample_count();
+  plan.samples = static_cast<std::int64_t>(n);
+  const io::TimingReport& timing = recording.report.timing;
+  if (timing.gap_count <= 0 || recording.time_s.size() != n || !(timing.median_interval_s > 0.0)) {
+    return plan;
+  }
+  if (policy == pipeline::GapPolicy::refuse) {
+    throw InputError(gap_refusal_message(source, timing));
+  }
+  plan.gaps = pipeline::find_time_gaps(recording.time_s, timing.median_interval_s);
+  if (plan.gaps.empty()) return plan;
+  const std::string count = std::to_string(plan.gaps.size()) + " time-stamp gap(s)";
+  if (policy == pipeline::GapPolicy::split) {
+    const pipeline::GapSplit split =
+        pipeline::split_at_gaps(n, plan.gaps, pipeline::kMinPieceSamples);
+    if (split.pieces.empty()) {
+      throw AnalysisError(source + ": --gaps split: no gap-free piece has " +
+                          std::to_string(pipeline::kMinPieceSamples) + " samples or more (" +
+                          count + " cut " + std::to_string(n) + " samples into " +
+                          std::to_string(split.dropped_pieces) + " pieces)");
+    }
+    plan.pieces = split.pieces;
+    plan.samples = 0;
+    for (const auto& piece : plan.pieces) plan.samples += static_cast<std::int64_t>(piece.size());
+    plan.note = "--gaps split: " + count + "; the curves and the PSD are pooled over " +
+                std::to_string(plan.pieces.size()) + " gap-free piece(s) (" +
+                std::to_string(plan.samples) + " samples)";
+    if (split.dropped_pieces > 0) {
+      plan.note += "; " + std::to_string(split.dropped_pieces) + " piece(s) shorter than " +
+                   std::to_string(pipeline::kMinPieceSamples) + " samples dropped (" +
+                   std::to_string(split.dropped_samples) + " samples)";
+    }
+    if (bootstrap) {
+      plan.note += "; bootstrap intervals simulate one record of the total length (approximate)";
+    }
+    return plan;
+  }
+  // Interpolate: every gap must be short enough for a straight line to be harmless.
+  const std::int64_t limit = pipeline::max_interpolated_gap(n);
+  std::int64_t filled = 0;
+  for (const pipeline::TimeGap& g : plan.gaps) {
+    if (g.missing > limit) {
+      std::string at = "sample " + std::to_string(g.after);
+      if (recording.report.timing.first_gap && recording.report.timing.first_gap->line &&
+          recording.report.timing.first_gap->index == static_cast<std::int64_t>(g.after)) {
+        at.append(", line ").append(std::to_string(*recording.report.timing.first_gap->line));
+      }
+      throw InputError(source + ": --gaps interpolate: the gap before " + at +
+                       " (t = " + significant_number_text(g.start_s, 9) + " s, " +
+                       significant_number_text(g.length_s) + " s long) lacks " +
+                       std::to_string(g.missing) + " samples, more than interpolation may fill (" +
+                       std::to_string(limit) +
+                       ": 1 % of the record, at most 1000); use --gaps split");
+    }
+    filled += g.missing;
+  }
+  plan.samples += filled;
+  plan.note = "--gaps interpolate: " + count + " filled with " + std::to_string(filled) +
+              " linearly interpolated sample(s) per channel (noise-free, so the shortest tau "
+              "read slightly low)";
+  return plan;
+}
+
+}  // namespace
+
 AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
                                  const AnalysisSettings& settings,
                                  const AnalysisFeedback& feedback) {
   const double tau0_s = recording.sample_period_s;
+  // The readers guarantee a positive period; a Recording built by other code might not, and
+  // τ0 = 0 would turn every τ and rate into 0 or Inf.
+  if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) {
+    throw InputError(source + ": no usable sample period (" + shortest_number_text(tau0_s) +
+                     " s): give the rate or a time column that increases");
+  }
   std::vector<std::pair<std::size_t, const io::Channel*>> channels;
   for (std::size_t c = 0; c < io::kImuChannelNames.size(); ++c) {
     if (const io::Channel* channel = recording.find_channel(io::kImuChannelNames[c])) {
@@ -201,6 +324,25 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
     throw InputError(source + ": no gyro or accelerometer channels to analyse");
   }
   const pipeline::AxisAnalysisOptions options = axis_options(settings, tau0_s);
+  const GapPlan gap_plan = plan_gaps(recording, source, pipeline::parse_gap_policy(settings.gaps),
+                                     settings.bootstrap >= 2);
+  // The samples each channel is analysed on: the recording, its gap-free pieces, or a copy
+  // with the gaps filled (kept alive here for the spans).
+  std::vector<std::vector<double>> filled(channels.size());
+  std::vector<std::vector<std::span<const double>>> pieces(channels.size());
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    const std::vector<double>& values = channels[i].second->values;
+    if (gap_plan.policy == pipeline::GapPolicy::interpolate && !gap_plan.gaps.empty()) {
+      filled[i] = pipeline::interpolate_gaps(values, gap_plan.gaps);
+      pieces[i].emplace_back(filled[i]);
+    } else if (!gap_plan.pieces.empty()) {
+      for (const pipeline::SampleRange& r : gap_plan.pieces) {
+        pieces[i].push_back(std::span<const double>(values).subspan(r.begin, r.size()));
+      }
+    } else {
+      pieces[i].emplace_back(values);
+    }
+  }
 
   // Axes in parallel: each worker takes the next axis (one thread per axis; the bootstrap of
   // an axis runs in that thread, so the total never exceeds --threads). Each axis's result
@@ -218,8 +360,8 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
       try {
         pipeline::AxisAnalysisOptions channel_options = options;
         channel_options.progress = progress.callback(i);
-        results[i] = pipeline::analyze_axis(channel->name, index < 3, channel->values, tau0_s,
-                                            static_cast<int>(index), channel_options);
+        results[i] = pipeline::analyze_axis_pieces(channel->name, index < 3, pieces[i], tau0_s,
+                                                   static_cast<int>(index), channel_options);
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -231,7 +373,15 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
   worker();
   for (std::thread& t : pool) t.join();
   for (std::size_t i = 0; i < channels.size(); ++i) {
-    if (errors[i]) std::rethrow_exception(errors[i]);
+    if (!errors[i]) continue;
+    // The axis analysis names the channel; the user also needs the file.
+    try {
+      std::rethrow_exception(errors[i]);
+    } catch (const AnalysisError& e) {
+      throw AnalysisError(source + ": " + e.what());
+    } catch (const InputError& e) {
+      throw InputError(source + ": " + e.what());
+    }
   }
 
   AnalysisResult result;
@@ -240,10 +390,11 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
   model.source = source;
   model.sensor_name = std::filesystem::path(source).filename().string();
   model.sample_rate_hz = 1.0 / tau0_s;
-  model.samples = static_cast<std::int64_t>(recording.sample_count());
+  model.samples = gap_plan.samples;
   model.duration_s = static_cast<double>(model.samples) * tau0_s;
   model.confidence = settings.confidence;
   model.data_quality = quality_findings(recording.report);
+  if (!gap_plan.note.empty()) model.data_quality.push_back(gap_plan.note);
   for (auto& r : results) {
     model.axes.push_back(r->model);
     result.axes.push_back(std::move(*r));

@@ -29,6 +29,8 @@ struct AnalysisSettings {
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;
   std::vector<double> sinusoid_hz;
+  /// Time-stamp gaps: "refuse" (default), "split" or "interpolate" (pipeline::GapPolicy).
+  std::string gaps = "refuse";
 };
 
 /// Adds the analysis flags to `cmd`; values land in `settings` (which must outlive the parse).
@@ -55,14 +57,22 @@ struct AnalysisFeedback {
 };
 
 /// Analyses every gyro/accel channel of `recording` (threads across channels). `source` names
-/// the data in the model (model.source; sensor_name is its file name). Throws InputError for
-/// bad settings (naming the flag) or a recording without IMU channels, AnalysisError when the
-/// data cannot give a fit.
+/// the data in the model (model.source; sensor_name is its file name). Time-stamp gaps follow
+/// settings.gaps: refused (InputError naming the file, the gaps and the two flags), split
+/// into gap-free pieces whose curves and PSD are pooled, or filled by linear interpolation
+/// (gaps longer than pipeline::max_interpolated_gap refused) — either way said in
+/// model.data_quality. Throws InputError for bad settings (naming the flag) or a recording
+/// without IMU channels, AnalysisError when the data cannot give a fit.
 AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
                                  const AnalysisSettings& settings,
                                  const AnalysisFeedback& feedback = {});
 
 /// Data-quality findings of a sampling report, one line each (empty = nothing to say).
 std::vector<std::string> quality_findings(const io::SamplingReport& report);
+
+/// The one-line refusal of a recording with time-stamp gaps under `--gaps refuse`: SOURCE
+/// (with the line of the first gap when known), the number of gaps, where the first is, the
+/// longest, the samples missing, and the two flags that go on. Empty when there is no gap.
+std::string gap_refusal_message(const std::string& source, const io::TimingReport& timing);
 
 }  // namespace imunoise::tools

@@ -38,6 +38,7 @@
 #include "models/datasheet_units.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
+#include "pipeline/gap_policy.h"
 #include "tools/analysis_job.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
@@ -235,6 +236,7 @@ void print_summary(const models::NoiseModel& model,
 
 /// TIMES gets the wall time of reading and of the analysis (the caller adds the outputs).
 void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
+  (void)pipeline::parse_gap_policy(args.analysis.gaps);  // a bad --gaps fails before the read
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   std::optional<std::array<NoiseCoefficients, 6>> truth;
   if (!args.truth_path.empty()) {

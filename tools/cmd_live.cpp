@@ -24,6 +24,7 @@
 #include "io/atomic_output.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
+#include "pipeline/gap_policy.h"
 #include "tools/analysis_job.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
@@ -187,6 +188,7 @@ void run_live(const LiveArgs& args) {
   const double max_runtime_s =
       args.max_runtime.empty() ? 0.0 : parse_duration_s(args.max_runtime, "--max-runtime");
   if (args.max_samples < 16) throw InputError("--max-samples: expected at least 16");
+  (void)pipeline::parse_gap_policy(args.analysis.gaps);
   if (args.queue_capacity < 1) throw InputError("--queue-capacity: expected at least 1");
   if (!args.output_dir.empty()) io::create_output_directory(args.output_dir);
 
@@ -357,6 +359,9 @@ void register_live_command(CLI::App& app) {
   cmd->add_flag("--no-curves", args->no_curves, "publish the model only");
   cmd->add_option("-o,--output", args->output_dir,
                   "also write DIR/model.yaml after every analysis (atomically)");
+  // A live stream loses datagrams: one lost message must not stop every analysis of the
+  // window, so the pieces are pooled unless the user asks otherwise.
+  args->analysis.gaps = "split";
   add_analysis_options(*cmd, args->analysis);
   add_verbosity_options(*cmd, args->verbosity);
   cmd->footer(
