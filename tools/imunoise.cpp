@@ -11,8 +11,8 @@
 #include "tools/invocation.h"
 
 namespace {
-/// Exit codes: 0 success; CLI11's own codes for command-line syntax errors; these otherwise.
-constexpr int kExitInputError = 2;     ///< bad file, flag value or config
+/// Exit codes: 0 success (also --help, --version); these otherwise.
+constexpr int kExitInputError = 2;     ///< bad file, flag, flag value or config
 constexpr int kExitAnalysisError = 3;  ///< the data cannot give what was asked
 constexpr int kExitInternalError = 4;  ///< a bug or resource exhaustion
 }  // namespace
@@ -37,7 +37,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the help, the version or the mistake. Help and version succeed; every
+    // command-line mistake (unknown flag, bad value, missing argument) is bad input, exit 2 as
+    // for every other bad input, not CLI11's own 105–109.
+    return app.exit(e) == 0 ? 0 : kExitInputError;
   } catch (const imunoise::InputError& e) {
     std::fprintf(stderr, "imunoise: error: %s\n", e.what());
     return kExitInputError;
