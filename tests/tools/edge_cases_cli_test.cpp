@@ -345,9 +345,8 @@ TEST(EdgeCasesCli, ConstantColumnInAllanIsZeroNotNan) {
 
 TEST(EdgeCasesCli, CommandLineMistakesExitTwoAndHelpExitsZero) {
   // Unknown flag, a value outside a set, a missing required argument: bad input, exit 2.
-  for (const std::string args :
-       {"analyze --no-such-flag x.csv -o out", "allan x.csv --type bogus", "analyze",
-        "export model.yaml --to all --axis sideways"}) {
+  for (const std::string args : {"analyze --no-such-flag x.csv -o out", "allan x.csv --type bogus",
+                                 "analyze", "export model.yaml --to all --axis sideways"}) {
     const CommandResult r = run_imunoise(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_FALSE(r.err.empty()) << args;
