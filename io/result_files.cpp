@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <system_error>
 
 #include "common/errors.h"
@@ -28,6 +29,18 @@ std::vector<std::string> split_commas(const std::string& line) {
 }
 
 std::int64_t file_line_of_row(std::size_t row) { return static_cast<std::int64_t>(row) + 2; }
+
+/// InputError "PATH:LINE: empty cell in column 'NAME'" unless row R has a value in COLUMNS.
+void require_cells(const NumericTable& t, const std::string& path, std::size_t r,
+                   std::initializer_list<std::size_t> columns) {
+  for (std::size_t c : columns) {
+    if (!t.rows[r][c]) {
+      std::string problem = "empty cell in column '";
+      problem.append(t.columns[c]).append("'");
+      throw InputError(located_message(path, file_line_of_row(r), 0, problem));
+    }
+  }
+}
 
 }  // namespace
 
@@ -165,13 +178,7 @@ DriftSeries read_drift_csv(const std::string& path) {
   d.height_hold = true;  // imunoise drift always holds the height (theory.md §7.2)
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
     const auto& row = t.rows[r];
-    for (std::size_t c : {time, drms, roll, pitch, heading}) {
-      if (!row[c]) {
-        std::string problem = "empty cell in column '";
-        problem.append(t.columns[c]).append("'");
-        throw InputError(located_message(path, file_line_of_row(r), 0, problem));
-      }
-    }
+    require_cells(t, path, r, {time, drms, roll, pitch, heading});
     d.time_s.push_back(*row[time]);
     d.horizontal_sigma_m.push_back(*row[drms]);
     d.vertical_sigma_m.push_back(0.0);
@@ -193,13 +200,7 @@ std::vector<DriftSegment> read_drift_segments_csv(const std::string& path) {
   std::vector<DriftSegment> out;
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
     const auto& row = t.rows[r];
-    for (std::size_t c : {segment, time, horizontal}) {
-      if (!row[c]) {
-        std::string problem = "empty cell in column '";
-        problem.append(t.columns[c]).append("'");
-        throw InputError(located_message(path, file_line_of_row(r), 0, problem));
-      }
-    }
+    require_cells(t, path, r, {segment, time, horizontal});
     const int index = static_cast<int>(*row[segment]);
     if (out.empty() || out.back().index != index) out.push_back(DriftSegment{index, {}, {}});
     out.back().time_s.push_back(*row[time]);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "common/sampling_gap.h"
 #include "common/units.h"
 
 namespace imunoise::io {
@@ -121,13 +122,8 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
         t.gaps.push_back(GapRecord{locate(i + 1, options), time_s[i] - time_s[0], d});
       }
       t.longest_gap_s = std::max(t.longest_gap_s, d);
-      // Saturating: d / median may be beyond int64 (or inf) for absurd stamps, where llround
-      // has no defined result.
-      const double missing = std::round(d / median) - 1.0;
-      const std::int64_t add = !(missing > 0.0)    ? 0
-                               : missing >= 0x1p63 ? std::numeric_limits<std::int64_t>::max()
-                                                   : static_cast<std::int64_t>(missing);
-      if (__builtin_add_overflow(t.missing_samples, add, &t.missing_samples)) {
+      if (__builtin_add_overflow(t.missing_samples, missing_samples_in_gap(d, median),
+                                 &t.missing_samples)) {
         t.missing_samples = std::numeric_limits<std::int64_t>::max();
       }
     } else {

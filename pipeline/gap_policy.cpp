@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/sampling_gap.h"
 
 namespace imunoise::pipeline {
 
@@ -26,8 +27,7 @@ std::vector<TimeGap> find_time_gaps(std::span<const double> time_s, double perio
   for (std::size_t i = 1; i < time_s.size(); ++i) {
     const double d = time_s[i] - time_s[i - 1];
     if (!(d > limit)) continue;  // also skips NaN intervals
-    const std::int64_t missing = std::max<std::int64_t>(0, std::llround(d / period_s) - 1);
-    gaps.push_back({i, time_s[i - 1] - time_s[0], d, missing});
+    gaps.push_back({i, time_s[i - 1] - time_s[0], d, missing_samples_in_gap(d, period_s)});
   }
   return gaps;
 }

@@ -30,7 +30,7 @@ struct TimeGap {
   std::size_t after = 0;     ///< index of the first sample after the gap (≥ 1)
   double start_s = 0.0;      ///< time of the sample before the gap [s]
   double length_s = 0.0;     ///< the interval [s]
-  std::int64_t missing = 0;  ///< samples it lacks: round(length / period) − 1, ≥ 0
+  std::int64_t missing = 0;  ///< samples it lacks: missing_samples_in_gap (saturating)
 };
 
 /// Every gap of TIME_S (not only the first io::kMaxListedGaps the sampling report lists),

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -112,6 +113,14 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw std::runtime_error("cannot write test fixture " + path.string());
   out << text;
+}
+
+std::vector<double> white_noise(std::size_t n, double sigma, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, sigma);
+  std::vector<double> v(n);
+  for (double& x : v) x = normal(rng);
+  return v;
 }
 
 }  // namespace imunoise::test

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -56,6 +57,11 @@ std::vector<double> nbs14_1000_frequency();
 
 /// The SP 1065 9-point frequency set: 892, 809, 823, 798, 671, 644, 883, 903, 677.
 std::vector<double> nbs9_frequency();
+
+/// N samples of zero-mean Gaussian white noise of standard deviation SIGMA from
+/// std::mt19937_64 seeded with SEED (the same numbers for the same seed on every platform's
+/// libstdc++).
+std::vector<double> white_noise(std::size_t n, double sigma, std::uint64_t seed);
 
 /// Runs F and expects it to throw E whose what() contains FRAGMENT (a test failure otherwise).
 template <class E, class F>

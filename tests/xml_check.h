@@ -412,6 +412,20 @@ class Checker {
 
 }  // namespace xml_check_detail
 
+/// The `<svg>…</svg>` elements of a text (an HTML page with inline plots), in order; each is
+/// a document check_xml can parse.
+inline std::vector<std::string> svg_elements(std::string_view text) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  while ((at = text.find("<svg", at)) != std::string_view::npos) {
+    const std::size_t end = text.find("</svg>", at);
+    if (end == std::string_view::npos) break;
+    out.emplace_back(text.substr(at, end + 6 - at));
+    at = end + 6;
+  }
+  return out;
+}
+
 /// Checks that TEXT is a well-formed XML document (see the file comment for what is checked).
 inline XmlCheckResult check_xml(std::string_view text) {
   return xml_check_detail::Checker(text).run();

@@ -70,17 +70,6 @@ struct AnalyzeArgs {
   std::string curves_channel = "ALLAN_CURVE";
 };
 
-/// A coefficient in the unit people read on datasheets, with that unit's name.
-struct DisplayUnit {
-  double factor;  ///< SI value × factor = display value
-  std::string_view name;
-};
-
-DisplayUnit display_unit(models::Term term, bool gyro) {
-  const models::DatasheetUnit unit = models::datasheet_unit(term, gyro);
-  return {unit.factor, unit.ascii};
-}
-
 std::string unit_suffix(bool gyro) { return gyro ? "rad_per_s" : "m_per_s2"; }
 std::string psd_unit_suffix(bool gyro) { return gyro ? "rad2_per_s2_per_hz" : "m2_per_s4_per_hz"; }
 
@@ -176,7 +165,7 @@ void write_psd_csv(const std::string& path, const std::vector<pipeline::AxisAnal
 }
 
 /// "1.234e-02 [1.1e-02, 1.4e-02]" or "not identified (< 3e-4)".
-std::string estimate_text(const models::Estimate& e, const DisplayUnit& unit) {
+std::string estimate_text(const models::Estimate& e, const models::DatasheetUnit& unit) {
   if (!e.identified) {
     if (e.ci_high > 0.0) return "- (< " + significant_number_text(e.ci_high * unit.factor, 2) + ")";
     return "-";
@@ -197,8 +186,8 @@ void print_summary(const models::NoiseModel& model,
   for (bool gyro : {true, false}) {
     std::cout << "\n" << (gyro ? "gyro" : "accel") << "\n";
     for (models::Term term : models::kTerms) {
-      const DisplayUnit unit = display_unit(term, gyro);
-      std::cout << "  " << models::term_name(term) << " [" << unit.name << "]\n";
+      const models::DatasheetUnit unit = models::datasheet_unit(term, gyro);
+      std::cout << "  " << models::term_name(term) << " [" << unit.ascii << "]\n";
       for (std::size_t i = 0; i < model.axes.size(); ++i) {
         const models::AxisModel& axis = model.axes[i];
         if (axis.gyro != gyro) continue;

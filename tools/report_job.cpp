@@ -286,6 +286,16 @@ report::FigureBlock add_figure(const SavedResults& r, const report::Figure& figu
   return block;
 }
 
+/// The gyro and the accelerometer figure MAKE(gyro) builds, each that has data.
+template <typename Make>
+void add_sensor_figures(const SavedResults& r, report::PageSection& section, Make make,
+                        PendingFiles& files) {
+  for (bool gyro : {true, false}) {
+    const report::Figure f = make(gyro);
+    if (!f.plot.series.empty()) section.figures.push_back(add_figure(r, f, files));
+  }
+}
+
 std::vector<report::DeviationData> oadev_curves(const SavedResults& r) {
   std::vector<report::DeviationData> out;
   for (const io::DeviationSeries& s : r.allan) {
@@ -414,7 +424,6 @@ ReportOutput write_report(const std::string& dir) {
   const SavedResults r = load_results(dir);
   PendingFiles files;
   report::ReportPage page;
-  int figures = 0;
   std::string name = r.model ? r.model->sensor_name : std::string("drift");
   page.title = "imunoise report — " + name;
   if (r.model) {
@@ -441,12 +450,8 @@ ReportOutput write_report(const std::string& dir) {
   if (r.model && !r.allan.empty()) {
     report::PageSection s{"allan", "Allan deviation", {}, {}, {}, {}, {}};
     const auto curves = oadev_curves(r);
-    for (bool gyro : {true, false}) {
-      const report::Figure f = report::allan_figure(gyro, curves, *r.model);
-      if (f.plot.series.empty()) continue;
-      s.figures.push_back(add_figure(r, f, files));
-    }
-    figures += static_cast<int>(s.figures.size());
+    add_sensor_figures(
+        r, s, [&](bool gyro) { return report::allan_figure(gyro, curves, *r.model); }, files);
     page.sections.push_back(std::move(s));
   }
   if (!r.psd.empty()) {
@@ -455,12 +460,8 @@ ReportOutput write_report(const std::string& dir) {
     for (const io::PsdSeries& p : r.psd) {
       spectra.push_back({p.axis_name, p.frequency_hz, p.density, p.model_density});
     }
-    for (bool gyro : {true, false}) {
-      const report::Figure f = report::psd_figure(gyro, spectra);
-      if (f.plot.series.empty()) continue;
-      s.figures.push_back(add_figure(r, f, files));
-    }
-    figures += static_cast<int>(s.figures.size());
+    add_sensor_figures(
+        r, s, [&](bool gyro) { return report::psd_figure(gyro, spectra); }, files);
     page.sections.push_back(std::move(s));
   }
   if (!r.drift_dir.empty()) {
@@ -485,7 +486,6 @@ ReportOutput write_report(const std::string& dir) {
         d.segment_horizontal_m.push_back(seg.horizontal_error_m);
       }
       s.figures.push_back(add_figure(r, report::drift_figure(d), files));
-      ++figures;
     }
     report::Table t = drift_table(summary);
     if (!t.rows.empty()) s.tables.push_back(std::move(t));
@@ -512,14 +512,12 @@ ReportOutput write_report(const std::string& dir) {
         length.push_back(number_at(g, "length_s"));
       }
       const double gap_count = number_at(j, "gap_count");
-      ++figures;
       if (std::isfinite(gap_count) && gap_count > 0.0) {
         s.figures.push_back(
             add_figure(r,
                        report::gaps_figure(start, length, number_at(j, "duration_s"),
                                            static_cast<std::int64_t>(gap_count)),
                        files));
-        ++figures;
       } else {
         s.paragraphs.push_back("No gaps: no interval is longer than 1.5 × the median interval.");
       }
@@ -552,6 +550,10 @@ ReportOutput write_report(const std::string& dir) {
   files.emplace_back(html_path, report::render_html(page));
   io::create_output_directory((r.dir / "plots").string());
   for (const auto& [path, text] : files) io::write_file_atomically(path.string(), text);
+  int figures = 0;
+  for (const report::PageSection& section : page.sections) {
+    figures += static_cast<int>(section.figures.size());
+  }
   return {html_path, figures};
 }
 

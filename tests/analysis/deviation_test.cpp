@@ -7,17 +7,12 @@
 
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
+#include "test_support.h"
 
 namespace imunoise::analysis {
 namespace {
 
-std::vector<double> white_noise(std::size_t n, double sigma, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal(0.0, sigma);
-  std::vector<double> v(n);
-  for (double& x : v) x = normal(rng);
-  return v;
-}
+using test::white_noise;
 
 // Straightforward long-double evaluation of the SP 1065 sums, an independent reference for
 // the compensated, blocked and sliding-window kernels.

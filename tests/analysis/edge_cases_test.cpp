@@ -23,13 +23,7 @@
 namespace imunoise::analysis {
 namespace {
 
-std::vector<double> white(std::size_t n, double sigma, std::uint32_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, sigma);
-  std::vector<double> y(n);
-  for (double& v : y) v = g(rng);
-  return y;
-}
+using test::white_noise;
 
 /// Brute-force overlapping AVAR from rate samples (theory.md §2): every pair of adjacent
 /// m-averages inside one piece, σ² = Σ (ȳ_{k+m} − ȳ_k)² / (2·count), in long double.
@@ -78,7 +72,7 @@ double brute_force_hvar(std::span<const std::span<const double>> pieces, std::in
 TEST(EdgeCases, OadevOfALengthNotDivisibleByMUsesEveryTerm) {
   // N = 1001 rate samples, m = 7: 1001 = 143·7, but M = 1002 phase samples and M − 2m = 988
   // overlapping terms; ADEV has ⌊1001/7⌋ − 1 = 142 first differences of cluster means.
-  const std::vector<double> y = white(1001, 1.0, 7);
+  const std::vector<double> y = white_noise(1001, 1.0, 7);
   const std::vector<double> x = phase_from_rate(y, 1.0);
   const VarianceEstimate v = allan_family_variance(DeviationType::oadev, x, 7, 1.0);
   EXPECT_EQ(v.n_terms, 988);
@@ -88,7 +82,7 @@ TEST(EdgeCases, OadevOfALengthNotDivisibleByMUsesEveryTerm) {
   EXPECT_NEAR(v.variance / bf.avar(), 1.0, 1e-12);
   EXPECT_EQ(allan_family_variance(DeviationType::adev, x, 7, 1.0).n_terms, 142);
   // And a length that leaves a remainder of 6 at every m of an octave grid.
-  const std::vector<double> y2 = white(1000 + 6, 1.0, 8);
+  const std::vector<double> y2 = white_noise(1000 + 6, 1.0, 8);
   const std::vector<double> x2 = phase_from_rate(y2, 0.5);
   for (std::int64_t m : {1, 2, 4, 8, 16, 64, 251}) {
     BruteForce b2;
@@ -120,7 +114,7 @@ TEST(EdgeCases, HugeConstantBiasLeavesTheDeviationsUnchanged) {
   // Bias 1e6 × the noise σ: the mean removal before the compensated integration
   // (theory.md §2 "Numerics") keeps the digits. The only loss is the rounding of bias + noise
   // in the input itself, ~1e-16 · 1e6 relative to the noise.
-  const std::vector<double> noise = white(200000, 1e-3, 11);
+  const std::vector<double> noise = white_noise(200000, 1e-3, 11);
   std::vector<double> biased(noise.size());
   for (std::size_t i = 0; i < noise.size(); ++i) biased[i] = 1e3 + noise[i];
   DeviationOptions options;
@@ -144,7 +138,7 @@ TEST(EdgeCases, HugeConstantBiasLeavesTheDeviationsUnchanged) {
 TEST(EdgeCases, PooledOadevEqualsTheAvarOfEveryDifferenceThatDoesNotStraddleAGap) {
   // Four pieces of one white record, of lengths that leave remainders at every m; some
   // pieces are too short for the largest m and must simply stop contributing there.
-  const std::vector<double> y = white(1001 + 537 + 260 + 151, 2e-3, 21);
+  const std::vector<double> y = white_noise(1001 + 537 + 260 + 151, 2e-3, 21);
   std::vector<std::span<const double>> rate_pieces;
   std::size_t at = 0;
   for (std::size_t n : {1001, 537, 260, 151}) {
@@ -198,7 +192,7 @@ TEST(EdgeCases, PooledOadevEqualsTheAvarOfEveryDifferenceThatDoesNotStraddleAGap
 }
 
 TEST(EdgeCases, PooledDeviationOfOnePieceIsTheSingleRecordCurve) {
-  const std::vector<double> y = white(5000, 1.0, 3);
+  const std::vector<double> y = white_noise(5000, 1.0, 3);
   const std::vector<double> x = phase_from_rate(y, 0.1);
   const std::span<const double> one[] = {x};
   const std::vector<std::int64_t> m{1, 3, 10, 100, 1250};
@@ -213,7 +207,7 @@ TEST(EdgeCases, PooledDeviationOfOnePieceIsTheSingleRecordCurve) {
 }
 
 TEST(EdgeCases, PooledWelchWeightsPiecesBySegmentCount) {
-  const std::vector<double> y = white(20000, 1.0, 5);
+  const std::vector<double> y = white_noise(20000, 1.0, 5);
   const std::span<const double> all(y);
   // One piece: exactly welch_psd.
   const std::span<const double> one[] = {all};

@@ -19,13 +19,7 @@
 namespace imunoise::pipeline {
 namespace {
 
-std::vector<double> white(std::size_t n, double sigma, std::uint32_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, sigma);
-  std::vector<double> y(n);
-  for (double& v : y) v = g(rng);
-  return y;
-}
+using test::white_noise;
 
 /// Time stamps at PERIOD with the listed sample ranges [begin, end) removed (the gaps).
 std::vector<double> stamps_without(std::size_t n, double period,
@@ -48,6 +42,17 @@ void expect_finite_model(const models::AxisModel& m) {
   EXPECT_TRUE(std::isfinite(m.fit_tau_min_s) && std::isfinite(m.fit_tau_max_s)) << m.name;
   for (double v : m.readoff.slope) EXPECT_TRUE(std::isfinite(v)) << m.name;
   for (double v : m.readoff.psd) EXPECT_TRUE(std::isfinite(v)) << m.name;
+}
+
+TEST(GapPolicy, AbsurdGapsSaturateTheMissingCountInsteadOfOverflowing) {
+  // A ratio beyond int64 (and an infinite one) has no llround; the count saturates, as the
+  // sampling report's does, so --gaps interpolate refuses it with its usual message.
+  const std::vector<double> t{0.0, 1.0, 2.0, 1e300, 1e300 + 1.0};
+  const auto gaps = find_time_gaps(t, 1.0);
+  ASSERT_EQ(gaps.size(), 1u);
+  EXPECT_EQ(gaps[0].after, 3u);
+  EXPECT_EQ(gaps[0].missing, std::numeric_limits<std::int64_t>::max());
+  EXPECT_GT(gaps[0].missing, max_interpolated_gap(t.size()));
 }
 
 TEST(GapPolicy, ParsesTheThreePoliciesAndNamesTheFlagOtherwise) {
@@ -116,7 +121,7 @@ TEST(GapPolicy, SplitRecoversWhiteNoiseWithinItsStatisticalTolerance) {
   const double tau0 = 0.01;
   const double n_true = 2e-3;
   const std::size_t n = 60000;
-  const std::vector<double> y = white(n, n_true / std::sqrt(tau0), 17);
+  const std::vector<double> y = white_noise(n, n_true / std::sqrt(tau0), 17);
   const std::vector<SampleRange> cut{
       {10000, 10050}, {30000, 30500}, {50000, 50010}, {50070, 50100}};
   std::vector<double> kept_values;
@@ -158,7 +163,7 @@ TEST(GapPolicy, SplitRecoversWhiteNoiseWithinItsStatisticalTolerance) {
 }
 
 TEST(GapPolicy, OnePieceIsExactlyTheSingleRecordAnalysis) {
-  const std::vector<double> y = white(20000, 0.01, 4);
+  const std::vector<double> y = white_noise(20000, 0.01, 4);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
   const AxisAnalysis a = analyze_axis("gyro_z", true, y, 0.005, 2, options);
@@ -181,7 +186,7 @@ TEST(AxisEdgeCases, TooShortConstantAndNonFiniteRecordsAreClearErrors) {
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
   for (std::size_t n : {std::size_t{1}, std::size_t{2}, std::size_t{15}}) {
-    const std::vector<double> y = white(n, 1.0, 1);
+    const std::vector<double> y = white_noise(n, 1.0, 1);
     test::expect_throw_containing<AnalysisError>(
         [&] { (void)analyze_axis("gyro_x", true, y, 0.01, 0, options); }, "too few samples");
   }
@@ -191,7 +196,7 @@ TEST(AxisEdgeCases, TooShortConstantAndNonFiniteRecordsAreClearErrors) {
       "the signal is constant");
   const double inf = std::numeric_limits<double>::infinity();
   for (double bad : {std::nan(""), inf, -inf}) {
-    std::vector<double> y = white(5000, 1.0, 2);
+    std::vector<double> y = white_noise(5000, 1.0, 2);
     y[1234] = bad;
     test::expect_throw_containing<AnalysisError>(
         [&] { (void)analyze_axis("gyro_y", true, y, 0.01, 1, options); }, "sample 1234");
@@ -201,7 +206,7 @@ TEST(AxisEdgeCases, TooShortConstantAndNonFiniteRecordsAreClearErrors) {
 TEST(AxisEdgeCases, ValuesNearTheFloatLimitsGiveAResultOrAClearError) {
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  const std::vector<double> unit = white(20000, 1.0, 9);
+  const std::vector<double> unit = white_noise(20000, 1.0, 9);
   // Scales the squares (and the fit's squared variances) survive: a finite, right result.
   for (double scale : {1e-30, 1e-12, 1e12, 1e30}) {
     std::vector<double> y(unit);
@@ -229,7 +234,7 @@ TEST(AxisEdgeCases, HugeConstantBiasGivesTheCoefficientsOfTheNoiseAlone) {
   // Accelerometer-like: noise 1e-3 on a bias of 1e3 (10^6 × the noise).
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  const std::vector<double> noise = white(50000, 1e-3, 12);
+  const std::vector<double> noise = white_noise(50000, 1e-3, 12);
   std::vector<double> biased(noise.size());
   for (std::size_t i = 0; i < noise.size(); ++i) biased[i] = 1e3 + noise[i];
   const AxisAnalysis a = analyze_axis("accel_x", false, noise, 0.01, 3, options);

@@ -144,7 +144,6 @@ TEST(FigureCsv, HoldsExactlyThePlottedPointsWithUnitsInTheHeader) {
   EXPECT_EQ(lines.size(), 1 + points + f.plot.points.size());
   // The first data row is the first OADEV point with its interval, round-trip exact.
   const DeviationData d = gyro_curve();
-  std::ostringstream expected;
   EXPECT_EQ(lines[1].substr(0, lines[1].find(',')), "gyro_x oadev");
   std::vector<double> cells;
   std::istringstream row(lines[1].substr(lines[1].find(',') + 1));
@@ -206,18 +205,7 @@ TEST(GapsFigure, NoGapsIsStillAValidPlot) {
 
 // --------------------------------------------------------------------------------- HTML page
 
-/// The <svg>…</svg> elements of an HTML text.
-std::vector<std::string> svg_elements(const std::string& html) {
-  std::vector<std::string> out;
-  std::size_t at = 0;
-  while ((at = html.find("<svg", at)) != std::string::npos) {
-    const std::size_t end = html.find("</svg>", at);
-    if (end == std::string::npos) break;
-    out.push_back(html.substr(at, end + 6 - at));
-    at = end + 6;
-  }
-  return out;
-}
+using test::svg_elements;
 
 TEST(HtmlPage, SectionsTablesFiguresAndEscaping) {
   ReportPage page;

@@ -27,18 +27,6 @@ std::string read_all(const fs::path& path) {
   return s.str();
 }
 
-std::vector<std::string> svg_elements(const std::string& html) {
-  std::vector<std::string> out;
-  std::size_t at = 0;
-  while ((at = html.find("<svg", at)) != std::string::npos) {
-    const std::size_t end = html.find("</svg>", at);
-    if (end == std::string::npos) break;
-    out.push_back(html.substr(at, end + 6 - at));
-    at = end + 6;
-  }
-  return out;
-}
-
 /// The text between <table id="ID"> and its </table>.
 std::string table_text(const std::string& html, const std::string& id) {
   const std::size_t at = html.find("<table id=\"" + id + "\">");
