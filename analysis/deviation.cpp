@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "analysis/confidence.h"
+#include "analysis/difference_sums.h"
 #include "analysis/edf.h"
 #include "analysis/extra_deviations.h"
 #include "analysis/kernel_support.h"
@@ -28,6 +31,19 @@ inline double second_difference(const double* x, std::int64_t k, std::int64_t m)
 }
 inline double third_difference(const double* x, std::int64_t k, std::int64_t m) {
   return x[k + 3 * m] - 3.0 * x[k + 2 * m] + 3.0 * x[k + m] - x[k];
+}
+
+/// The difference order of the overlapping statistics whose sums come from
+/// detail::overlapping_difference_sums (2: OADEV, 3: OHDEV), else 0.
+int overlapping_order(DeviationType type) {
+  return type == DeviationType::oadev ? 2 : type == DeviationType::ohdev ? 3 : 0;
+}
+
+/// theory.md §2: OAVAR = S/(2τ²n), OHVAR = S/(6τ²n), from the sum S of n squared differences.
+double overlapping_variance(int order, double sum, std::int64_t n_terms, std::int64_t m,
+                            double tau0_s) {
+  const double tau = static_cast<double>(m) * tau0_s;
+  return sum / ((order == 2 ? 2.0 : 6.0) * tau * tau * static_cast<double>(n_terms));
 }
 
 /// Σ_j (Σ_{k=j}^{j+m−1} d_k)², j = 0..n−1, d = second difference at stride m (MVAR, SP 1065).
@@ -167,11 +183,9 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
       break;
     }
     case DeviationType::oadev: {  // theory.md §2 overlapping AVAR
-      const double s = blocked_sum(n, [&](std::int64_t k) {
-        const double d = second_difference(x, k, m);
-        return d * d;
-      });
-      out.variance = s / (2.0 * tau * tau * nn);
+      double s = 0.0;
+      detail::overlapping_difference_sums(phase, 2, std::span(&m, 1), std::span(&s, 1));
+      out.variance = overlapping_variance(2, s, n, m, tau0_s);
       break;
     }
     case DeviationType::mdev:
@@ -191,11 +205,9 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
       break;
     }
     case DeviationType::ohdev: {  // theory.md §2 overlapping Hadamard
-      const double s = blocked_sum(n, [&](std::int64_t k) {
-        const double d = third_difference(x, k, m);
-        return d * d;
-      });
-      out.variance = s / (6.0 * tau * tau * nn);
+      double s = 0.0;
+      detail::overlapping_difference_sums(phase, 3, std::span(&m, 1), std::span(&s, 1));
+      out.variance = overlapping_variance(3, s, n, m, tau0_s);
       break;
     }
     case DeviationType::totdev: {  // theory.md §2 total variance (SP 1065 eq. 25)
@@ -213,6 +225,34 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
 }
 
 namespace {
+
+/// Runs work(i) for i = 0..count−1 on up to THREADS threads (the caller's included), each item
+/// exactly once; the first exception is rethrown after all threads stopped.
+template <class Work>
+void parallel_for(std::size_t count, unsigned threads, Work&& work) {
+  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
+  if (threads <= 1) {
+    for (std::size_t i = 0; i < count; ++i) work(i);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < count && !failed; i = next++) {
+      try {
+        work(i);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+}
 
 /// The variance of one curve point: the plain estimator, or for MTOTDEV, TTOTDEV, HTOTDEV and
 /// Thêo1 with options.bias_corrected, the SP 1065 bias-corrected one for noise type ALPHA.
@@ -250,6 +290,40 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
                        std::to_string(curve.n_phase) + " phase samples)");
   }
   curve.points.resize(averaging_factors.size());
+  const std::size_t count = averaging_factors.size();
+
+  // Every τ costs an O(M) pass, so the work is split over threads; each result is written by
+  // exactly one work item and computed the same way whoever runs it, so results do not
+  // depend on the thread count.
+  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
+  if (curve.n_phase < 50000) threads = 1;  // thread start-up would dominate
+
+  // OADEV and OHDEV, the statistics of `analyze`: their difference sums come first, with the
+  // small factors sharing cache-resident passes (analysis/difference_sums.h). The small ones
+  // are dealt round-robin into one shared pass per thread, each large one is its own item.
+  std::vector<double> sums;
+  const int order = overlapping_order(options.type);
+  if (order != 0) {
+    sums.assign(count, 0.0);
+    std::vector<std::vector<std::size_t>> items(threads);
+    std::size_t small = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (order * averaging_factors[i] <= detail::kSharedPassSpan) {
+        items[small++ % threads].push_back(i);
+      } else {
+        items.push_back({i});
+      }
+    }
+    std::erase_if(items, [](const auto& item) { return item.empty(); });
+    parallel_for(items.size(), threads, [&](std::size_t t) {
+      std::vector<std::int64_t> m_values;
+      for (std::size_t i : items[t]) m_values.push_back(averaging_factors[i]);
+      std::vector<double> item_sums(m_values.size());
+      detail::overlapping_difference_sums(phase, order, m_values, item_sums);
+      for (std::size_t k = 0; k < items[t].size(); ++k) sums[items[t][k]] = item_sums[k];
+    });
+  }
 
   auto compute_point = [&](std::size_t i) {
     const std::int64_t m = averaging_factors[i];
@@ -260,7 +334,13 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
     // and those estimators cost O(M·m): each is evaluated once. A constant signal gives no
     // identification and falls back to white FM (alpha 0), the neutral choice for its EDF.
     p.alpha = options.alpha ? *options.alpha : noise_alpha_for(options.type, phase, m);
-    const VarianceEstimate v = point_variance(options, phase, m, tau0_s, p.alpha);
+    VarianceEstimate v;
+    if (order != 0) {
+      v.n_terms = estimator_term_count(options.type, curve.n_phase, m);
+      v.variance = overlapping_variance(order, sums[i], v.n_terms, m, tau0_s);
+    } else {
+      v = point_variance(options, phase, m, tau0_s, p.alpha);
+    }
     p.value = std::sqrt(std::max(v.variance, 0.0));
     p.n_terms = v.n_terms;
     p.edf = edf_for(options.type, p.alpha, m, curve.n_phase);
@@ -268,34 +348,7 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
     p.ci_low = ci.low;
     p.ci_high = ci.high;
   };
-
-  // Every τ costs one O(M) pass, so τ values are independent work items for the threads;
-  // each point is written by exactly one thread, so results do not depend on the count.
-  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
-  threads =
-      std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(averaging_factors.size())));
-  if (curve.n_phase < 50000) threads = 1;  // thread start-up would dominate
-  if (threads <= 1) {
-    for (std::size_t i = 0; i < averaging_factors.size(); ++i) compute_point(i);
-    return curve;
-  }
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) {
-    pool.emplace_back([&] {
-      for (std::size_t i = next++; i < averaging_factors.size() && !failed; i = next++) {
-        try {
-          compute_point(i);
-        } catch (...) {
-          if (!failed.exchange(true)) failure = std::current_exception();
-        }
-      }
-    });
-  }
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
+  parallel_for(count, threads, compute_point);
   return curve;
 }
 
@@ -357,6 +410,24 @@ DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>>
                        " allows m <= " + std::to_string(max_m) + " on the longest piece of " +
                        std::to_string(phases[longest].size()) + " phase samples)");
   }
+  // OADEV/OHDEV: each piece's difference sums at all its factors in shared passes, as
+  // compute_deviation does; σ²_k = S_k/(c·τ²·n_k) exactly as allan_family_variance gives it.
+  const int order = overlapping_order(options.type);
+  std::vector<std::vector<double>> piece_sums(phases.size());
+  if (order != 0) {
+    for (std::size_t k = 0; k < phases.size(); ++k) {
+      const auto n_k = static_cast<std::int64_t>(phases[k].size());
+      std::vector<std::int64_t> usable;
+      for (std::int64_t m : averaging_factors) {
+        if (estimator_term_count(options.type, n_k, m) >= 1) usable.push_back(m);
+      }
+      piece_sums[k].resize(usable.size());
+      if (!usable.empty()) {
+        detail::overlapping_difference_sums(phases[k], order, usable, piece_sums[k]);
+      }
+    }
+  }
+  std::vector<std::size_t> next_sum(phases.size(), 0);
   curve.points.reserve(averaging_factors.size());
   for (std::int64_t m : averaging_factors) {
     DeviationPoint p;
@@ -367,10 +438,17 @@ DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>>
     // as the per-piece kernels are (theory.md §2 "Numerics").
     detail::CompensatedSum weighted;
     std::int64_t terms = 0;
-    for (const auto& phase : phases) {
-      const auto n_k = static_cast<std::int64_t>(phase.size());
+    for (std::size_t k = 0; k < phases.size(); ++k) {
+      const auto n_k = static_cast<std::int64_t>(phases[k].size());
       if (estimator_term_count(options.type, n_k, m) < 1) continue;
-      const VarianceEstimate v = allan_family_variance(options.type, phase, m, tau0_s);
+      VarianceEstimate v;
+      if (order != 0) {
+        v.n_terms = estimator_term_count(options.type, n_k, m);
+        v.variance =
+            overlapping_variance(order, piece_sums[k][next_sum[k]++], v.n_terms, m, tau0_s);
+      } else {
+        v = allan_family_variance(options.type, phases[k], m, tau0_s);
+      }
       weighted.add(static_cast<double>(v.n_terms) * v.variance);
       terms += v.n_terms;
     }

@@ -1,19 +1,30 @@
-// Deviation kernels on 11.52 M samples (8 h at 400 Hz), octave and log:10 grids,
-// single-threaded, plus the memory-streaming floor (one read pass per τ) for comparison.
-// Bytes/s reported = 8 bytes × phase samples × number of τ (one logical pass per τ).
+// Deviation kernels on 11.52 M samples (8 h at 400 Hz), octave and log:10 grids, against the
+// memory-bandwidth floor: the time to stream the phase array once per τ of the same grid,
+// measured here, in the same run, with the same thread count (issue 8's acceptance figure is
+// the ratio BM_OadevLog10 / BM_StreamFloorLog10 at equal threads).
+// Bytes/s reported = 8 bytes × phase samples × number of τ (one logical pass per τ), so a
+// kernel faster than the floor shows more bytes/s than memory can deliver: it shares passes.
 #include <benchmark/benchmark.h>
 
-#include <numeric>
+#include <algorithm>
 #include <random>
+#include <thread>
 
 #include "analysis/deviation.h"
 #include "analysis/tau_grid.h"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define BENCH_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define BENCH_CLONES
+#endif
 
 namespace {
 
 using imunoise::analysis::DeviationType;
 
 constexpr std::size_t kSamples = 11'520'000;  // 8 h at 400 Hz
+constexpr double kTau0 = 1.0 / 400.0;
 
 const std::vector<double>& bench_phase() {
   static const std::vector<double> phase = [] {
@@ -21,77 +32,113 @@ const std::vector<double>& bench_phase() {
     std::normal_distribution<double> normal(0.0, 1.0);
     std::vector<double> y(kSamples);
     for (double& v : y) v = normal(rng);
-    return imunoise::analysis::phase_from_rate(y, 1.0 / 400.0);
+    return imunoise::analysis::phase_from_rate(y, kTau0);
   }();
   return phase;
 }
 
-void run_curve(benchmark::State& state, DeviationType type, const char* grid, bool with_ci) {
-  const auto& phase = bench_phase();
-  const auto factors = imunoise::analysis::averaging_factors(
-      imunoise::analysis::parse_tau_grid(grid), type, static_cast<std::int64_t>(phase.size()));
-  for (auto _ : state) {
-    if (with_ci) {
-      imunoise::analysis::DeviationOptions options;
-      options.type = type;
-      options.threads = static_cast<unsigned>(state.range(0));
-      benchmark::DoNotOptimize(
-          imunoise::analysis::compute_deviation(phase, 1.0 / 400.0, factors, options));
-    } else {
-      double sink = 0;
-      for (auto m : factors) {
-        sink += imunoise::analysis::allan_family_variance(type, phase, m, 1.0 / 400.0).variance;
-      }
-      benchmark::DoNotOptimize(sink);
-    }
-  }
-  state.counters["taus"] = static_cast<double>(factors.size());
+std::vector<std::int64_t> grid_factors(const char* grid, DeviationType type) {
+  return imunoise::analysis::averaging_factors(imunoise::analysis::parse_tau_grid(grid), type,
+                                               static_cast<std::int64_t>(bench_phase().size()));
+}
+
+void set_bytes(benchmark::State& state, std::size_t taus) {
+  state.counters["taus"] = static_cast<double>(taus);
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *
-                          static_cast<int64_t>(factors.size() * phase.size() * sizeof(double)));
+                          static_cast<int64_t>(taus * bench_phase().size() * sizeof(double)));
 }
 
-void BM_OadevOctave(benchmark::State& s) { run_curve(s, DeviationType::oadev, "octave", false); }
-void BM_OadevLog10(benchmark::State& s) { run_curve(s, DeviationType::oadev, "log:10", false); }
-void BM_OhdevOctave(benchmark::State& s) { run_curve(s, DeviationType::ohdev, "octave", false); }
-void BM_OhdevLog10(benchmark::State& s) { run_curve(s, DeviationType::ohdev, "log:10", false); }
-void BM_HdevOctave(benchmark::State& s) { run_curve(s, DeviationType::hdev, "octave", false); }
-void BM_HdevLog10(benchmark::State& s) { run_curve(s, DeviationType::hdev, "log:10", false); }
-void BM_MdevLog10(benchmark::State& s) { run_curve(s, DeviationType::mdev, "log:10", false); }
-void BM_TotdevLog10(benchmark::State& s) { run_curve(s, DeviationType::totdev, "log:10", false); }
-// Full curve: deviations + noise identification + EDF + CI, with N threads.
-void BM_OadevLog10WithCi(benchmark::State& s) {
-  run_curve(s, DeviationType::oadev, "log:10", true);
-}
-
-// The memory floor: stream the phase array once per τ of the log:10 grid (a plain sum).
-void BM_StreamFloorLog10(benchmark::State& state) {
+/// The curve as `imunoise analyze` computes it: compute_deviation with the noise type given
+/// (analyze fixes α and re-derives it from the model), state.range(0) threads.
+void run_curve(benchmark::State& state, DeviationType type, const char* grid) {
   const auto& phase = bench_phase();
-  const auto factors = imunoise::analysis::averaging_factors(
-      imunoise::analysis::parse_tau_grid("log:10"), DeviationType::oadev,
-      static_cast<std::int64_t>(phase.size()));
+  const auto factors = grid_factors(grid, type);
+  imunoise::analysis::DeviationOptions options;
+  options.type = type;
+  options.alpha = 0;
+  options.threads = static_cast<unsigned>(state.range(0));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(imunoise::analysis::compute_deviation(phase, kTau0, factors, options));
+  }
+  set_bytes(state, factors.size());
+}
+
+/// One estimator call per τ (allan_family_variance), each its own pass over memory.
+void run_per_tau(benchmark::State& state, DeviationType type, const char* grid) {
+  const auto& phase = bench_phase();
+  const auto factors = grid_factors(grid, type);
   for (auto _ : state) {
     double sink = 0;
-    for (std::size_t t = 0; t < factors.size(); ++t) {
-      double s = 0;
-#pragma omp simd reduction(+ : s)
-      for (std::size_t k = 0; k < phase.size(); ++k) s += phase[k];
-      sink += s;
+    for (auto m : factors) {
+      sink += imunoise::analysis::allan_family_variance(type, phase, m, kTau0).variance;
     }
     benchmark::DoNotOptimize(sink);
   }
-  state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *
-                          static_cast<int64_t>(factors.size() * phase.size() * sizeof(double)));
+  set_bytes(state, factors.size());
 }
 
-BENCHMARK(BM_OadevOctave)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_OadevLog10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_OhdevOctave)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_OhdevLog10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_HdevOctave)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_HdevLog10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_MdevLog10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_TotdevLog10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_OadevLog10WithCi)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_StreamFloorLog10)->Unit(benchmark::kMillisecond);
+void BM_OadevOctave(benchmark::State& s) { run_curve(s, DeviationType::oadev, "octave"); }
+void BM_OadevLog10(benchmark::State& s) { run_curve(s, DeviationType::oadev, "log:10"); }
+void BM_OhdevLog10(benchmark::State& s) { run_curve(s, DeviationType::ohdev, "log:10"); }
+void BM_OadevLog10PerTau(benchmark::State& s) { run_per_tau(s, DeviationType::oadev, "log:10"); }
+void BM_HdevLog10PerTau(benchmark::State& s) { run_per_tau(s, DeviationType::hdev, "log:10"); }
+void BM_MdevLog10PerTau(benchmark::State& s) { run_per_tau(s, DeviationType::mdev, "log:10"); }
+void BM_TotdevLog10PerTau(benchmark::State& s) { run_per_tau(s, DeviationType::totdev, "log:10"); }
+// Full curve with lag-1 noise identification per τ (what `allan` does).
+void BM_OadevLog10WithNoiseId(benchmark::State& state) {
+  const auto& phase = bench_phase();
+  const auto factors = grid_factors("log:10", DeviationType::oadev);
+  imunoise::analysis::DeviationOptions options;
+  options.type = DeviationType::oadev;
+  options.threads = static_cast<unsigned>(state.range(0));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(imunoise::analysis::compute_deviation(phase, kTau0, factors, options));
+  }
+  set_bytes(state, factors.size());
+}
+
+/// Σ x over [begin, end) with eight independent accumulators (no add-latency chain), compiled
+/// for the same ISA as the kernels: the fastest way to read the array once.
+BENCH_CLONES double stream_sum(const double* x, std::size_t begin, std::size_t end) {
+  double lane[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  std::size_t k = begin;
+  for (; k + 8 <= end; k += 8) {
+    for (int l = 0; l < 8; ++l) lane[l] += x[k + l];
+  }
+  for (; k < end; ++k) lane[0] += x[k];
+  return ((lane[0] + lane[4]) + (lane[1] + lane[5])) + ((lane[2] + lane[6]) + (lane[3] + lane[7]));
+}
+
+// The memory floor: stream the phase array once per τ of the log:10 grid, the τ passes split
+// over state.range(0) threads as compute_deviation splits its work.
+void BM_StreamFloorLog10(benchmark::State& state) {
+  const auto& phase = bench_phase();
+  const auto factors = grid_factors("log:10", DeviationType::oadev);
+  const auto threads = static_cast<std::size_t>(state.range(0));
+  for (auto _ : state) {
+    std::vector<double> sink(threads, 0.0);
+    auto passes = [&](std::size_t t) {
+      for (std::size_t i = t; i < factors.size(); i += threads) {
+        sink[t] += stream_sum(phase.data(), 0, phase.size());
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(passes, t);
+    passes(0);
+    for (auto& th : pool) th.join();
+    benchmark::DoNotOptimize(sink.data());
+  }
+  set_bytes(state, factors.size());
+}
+
+BENCHMARK(BM_StreamFloorLog10)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OadevLog10)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OhdevLog10)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OadevOctave)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OadevLog10PerTau)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HdevLog10PerTau)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MdevLog10PerTau)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TotdevLog10PerTau)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OadevLog10WithNoiseId)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

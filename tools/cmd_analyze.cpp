@@ -223,7 +223,8 @@ void print_summary(const models::NoiseModel& model,
   }
 }
 
-/// TIMES gets the wall time of reading and of the analysis (the caller adds the outputs).
+/// TIMES gets the wall time of reading, the analysis, the output files and the report (the
+/// caller adds what follows: the summary and publishing, as "outputs").
 void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   (void)pipeline::parse_gap_policy(args.analysis.gaps);  // a bad --gaps fails before the read
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
@@ -267,7 +268,9 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
       (dir / "sampling_report.json").string(),
       io::sampling_report_to_json(recording.report, args.file).dump(2) + "\n");
   write_command_file(dir.string());
+  times.mark("outputs");
   const ReportOutput report = write_report(dir.string());
+  times.mark("report");
   print_summary(model, truth);
   std::cout << "\nwrote " << (dir / "model.yaml").string()
             << ", allan.csv, psd.csv, sampling_report.json, plots/\nreport: " << report.html_path

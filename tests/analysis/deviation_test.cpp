@@ -191,6 +191,44 @@ TEST(Deviation, ResultsDoNotDependOnThreadCount) {
   }
 }
 
+TEST(Deviation, SharedPassesGiveEachFactorItsOwnSumAtAnyThreadCount) {
+  // OADEV/OHDEV curves share cache-resident passes among the small factors (order·m up to
+  // 32768 samples) and give each larger factor its own pass. Every point must equal the
+  // single-factor estimator bit for bit, agree with a long-double reference, and not depend
+  // on how many threads split the factors. The grid straddles the shared-span boundary.
+  const auto phase = phase_from_rate(white_noise(150'000, 1.0, 5), 1.0);
+  const std::vector<std::int64_t> factors = {1,     2,     3,     7,     64,    1000,  5461,
+                                             10922, 10923, 16383, 16384, 16385, 20000, 49999};
+  for (auto type : {DeviationType::oadev, DeviationType::ohdev}) {
+    const std::int64_t max_m = max_averaging_factor(type, static_cast<std::int64_t>(phase.size()));
+    std::vector<std::int64_t> usable;
+    for (std::int64_t m : factors) {
+      if (m <= max_m) usable.push_back(m);
+    }
+    DeviationOptions options;
+    options.type = type;
+    options.alpha = 0;
+    options.threads = 1;
+    const auto one = compute_deviation(phase, 1.0, usable, options);
+    for (unsigned threads : {2u, 3u, 5u}) {
+      options.threads = threads;
+      const auto many = compute_deviation(phase, 1.0, usable, options);
+      for (std::size_t i = 0; i < usable.size(); ++i) {
+        EXPECT_EQ(many.points[i].value, one.points[i].value)
+            << to_string(type) << " m=" << usable[i] << " threads=" << threads;
+      }
+    }
+    for (std::size_t i = 0; i < usable.size(); ++i) {
+      const VarianceEstimate single = allan_family_variance(type, phase, usable[i], 1.0);
+      EXPECT_EQ(one.points[i].value, std::sqrt(single.variance)) << to_string(type);
+      EXPECT_EQ(one.points[i].n_terms, single.n_terms);
+      const long double want = reference_variance(type, phase, usable[i], 1.0);
+      EXPECT_NEAR(single.variance / static_cast<double>(want), 1.0, 1e-13)
+          << to_string(type) << " m=" << usable[i];
+    }
+  }
+}
+
 TEST(Deviation, BadArgumentsAreClearErrors) {
   const std::vector<double> phase(10, 0.0);
   EXPECT_THROW(allan_family_variance(DeviationType::oadev, phase, 0, 1.0), AnalysisError);

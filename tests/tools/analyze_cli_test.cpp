@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "common/units.h"
@@ -87,6 +88,40 @@ TEST(AnalyzeCli, ConstantChannelStopsWithAClearMessageAndNoOutput) {
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("constant"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "model.yaml"));
+}
+
+TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
+  // --threads splits the axes, the τ passes of the deviations and the bootstrap replicates;
+  // every result must be the same bytes whatever the split (issue 8). 90 000 samples is above
+  // the size where the deviations themselves go parallel.
+  const auto dir = make_temp_dir("analyze_threads");
+  const auto rec = dir / "rec.csv";
+  const auto model = std::filesystem::path(IMUNOISE_SOURCE_DIR) / "configs" / "reference-imu.yaml";
+  const CommandResult sim = run_imunoise("simulate " + model.string() +
+                                         " --duration 30min --rate 50 --seed 8 -o " + rec.string());
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto slurp = [](const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  std::string reference[3];
+  for (const char* threads : {"1", "3", "2"}) {
+    const auto out = dir / (std::string("out") + threads);
+    const CommandResult r = run_imunoise("analyze " + rec.string() + " --bootstrap 6 --threads " +
+                                         threads + " -o " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int k = 0;
+    for (const char* name : {"model.yaml", "allan.csv", "psd.csv"}) {
+      const std::string text = slurp(out / name);
+      ASSERT_FALSE(text.empty()) << name;
+      if (reference[k].empty()) {
+        reference[k] = text;
+      } else {
+        EXPECT_TRUE(text == reference[k]) << name << " differs with --threads " << threads;
+      }
+      ++k;
+    }
+  }
 }
 
 TEST(AnalyzeCli, TooShortRecordStopsWithAClearMessage) {

@@ -1,0 +1,112 @@
+#include "analysis/difference_sums.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
+
+#include "analysis/kernel_support.h"
+
+// The kernels are compiled twice on x86-64 GCC/clang: for the baseline ISA and for x86-64-v3
+// (AVX2 + FMA), picked at load time by the CPU. On one machine every call takes the same
+// clone, so results do not depend on thread counts; across machines they may differ in the
+// last bits (FMA contraction), well inside every tolerance of theory.md §2.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define IMUNOISE_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define IMUNOISE_KERNEL_CLONES
+#endif
+
+namespace imunoise::analysis::detail {
+
+namespace {
+
+template <int Order>
+[[gnu::always_inline]] inline double difference(const double* x, std::int64_t k, std::int64_t m) {
+  if constexpr (Order == 2) {
+    return x[k + 2 * m] - 2.0 * x[k + m] + x[k];
+  } else {
+    return x[k + 3 * m] - 3.0 * x[k + 2 * m] + 3.0 * x[k + m] - x[k];
+  }
+}
+
+/// Σ_{k=begin}^{end−1} difference², in eight interleaved partial sums (lane k−begin mod 8):
+/// eight independent add chains hide the FMA latency and map onto vector registers; the lanes
+/// are combined in a fixed order, so the result is the same whatever the vector width.
+template <int Order>
+[[gnu::always_inline]] inline double block_sum(const double* x, std::int64_t m, std::int64_t begin,
+                                               std::int64_t end) {
+  double lane[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  std::int64_t k = begin;
+  for (; k + 8 <= end; k += 8) {
+    for (int l = 0; l < 8; ++l) {
+      const double d = difference<Order>(x, k + l, m);
+      lane[l] += d * d;
+    }
+  }
+  double tail = 0.0;
+  for (; k < end; ++k) {
+    const double d = difference<Order>(x, k, m);
+    tail += d * d;
+  }
+  return (((lane[0] + lane[4]) + (lane[1] + lane[5])) +
+          ((lane[2] + lane[6]) + (lane[3] + lane[7]))) +
+         tail;
+}
+
+/// The sums of FACTORS (ascending) over one pass: block by block, every factor in turn.
+template <int Order>
+void shared_pass(const double* x, std::int64_t M, const std::int64_t* factors, std::size_t count,
+                 CompensatedSum* totals) {
+  const std::int64_t longest = M - Order * factors[0];  // terms of the smallest factor
+  for (std::int64_t begin = 0; begin < longest; begin += kDifferenceBlock) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::int64_t n = M - Order * factors[i];
+      if (begin >= n) break;  // ascending factors: the rest have fewer terms still
+      totals[i].add(block_sum<Order>(x, factors[i], begin, std::min(n, begin + kDifferenceBlock)));
+    }
+  }
+}
+
+IMUNOISE_KERNEL_CLONES
+void shared_pass_clone(const double* x, std::int64_t M, int order, const std::int64_t* factors,
+                       std::size_t count, CompensatedSum* totals) {
+  if (order == 2) {
+    shared_pass<2>(x, M, factors, count, totals);
+  } else {
+    shared_pass<3>(x, M, factors, count, totals);
+  }
+}
+
+}  // namespace
+
+void overlapping_difference_sums(std::span<const double> x, int order,
+                                 std::span<const std::int64_t> m_values, std::span<double> sums) {
+  if (order != 2 && order != 3) throw std::invalid_argument("difference order must be 2 or 3");
+  if (sums.size() != m_values.size()) throw std::invalid_argument("one sum per factor");
+  const auto M = static_cast<std::int64_t>(x.size());
+  for (std::int64_t m : m_values) {
+    if (m < 1 || M - order * m < 1) throw std::invalid_argument("factor without a term");
+  }
+  // Ascending order; duplicates are computed once each (cheap, and keeps the code plain).
+  std::vector<std::size_t> order_of(m_values.size());
+  std::iota(order_of.begin(), order_of.end(), std::size_t{0});
+  std::stable_sort(order_of.begin(), order_of.end(),
+                   [&](std::size_t a, std::size_t b) { return m_values[a] < m_values[b]; });
+  std::vector<std::int64_t> factors(m_values.size());
+  for (std::size_t i = 0; i < order_of.size(); ++i) factors[i] = m_values[order_of[i]];
+  std::vector<CompensatedSum> totals(factors.size());
+
+  // Factors whose differences fit the shared span go through one pass; each larger factor
+  // streams the array on its own (its span exceeds what a block pass could keep in cache).
+  const auto shared = static_cast<std::size_t>(
+      std::upper_bound(factors.begin(), factors.end(), kSharedPassSpan / order) - factors.begin());
+  if (shared > 0) shared_pass_clone(x.data(), M, order, factors.data(), shared, totals.data());
+  for (std::size_t i = shared; i < factors.size(); ++i) {
+    shared_pass_clone(x.data(), M, order, &factors[i], 1, &totals[i]);
+  }
+  for (std::size_t i = 0; i < order_of.size(); ++i) sums[order_of[i]] = totals[i].value();
+}
+
+}  // namespace imunoise::analysis::detail
