@@ -31,16 +31,17 @@ template <int Order>
   }
 }
 
-/// Σ_{k=begin}^{end−1} difference², in eight interleaved partial sums (lane k−begin mod 8):
-/// eight independent add chains hide the FMA latency and map onto vector registers; the lanes
-/// are combined in a fixed order, so the result is the same whatever the vector width.
+/// Σ_{k=begin}^{end−1} difference², in 16 interleaved partial sums (lane (k−begin) mod 16):
+/// independent add chains hide the FMA latency (4 AVX2 registers of 4 lanes, or 8 SSE2 ones);
+/// the lanes are combined in a fixed tree, so the result does not depend on the vector width.
 template <int Order>
 [[gnu::always_inline]] inline double block_sum(const double* x, std::int64_t m, std::int64_t begin,
                                                std::int64_t end) {
-  double lane[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  constexpr int kLanes = 16;
+  double lane[kLanes] = {};
   std::int64_t k = begin;
-  for (; k + 8 <= end; k += 8) {
-    for (int l = 0; l < 8; ++l) {
+  for (; k + kLanes <= end; k += kLanes) {
+    for (int l = 0; l < kLanes; ++l) {
       const double d = difference<Order>(x, k + l, m);
       lane[l] += d * d;
     }
@@ -50,15 +51,18 @@ template <int Order>
     const double d = difference<Order>(x, k, m);
     tail += d * d;
   }
-  return (((lane[0] + lane[4]) + (lane[1] + lane[5])) +
-          ((lane[2] + lane[6]) + (lane[3] + lane[7]))) +
-         tail;
+  for (int width = kLanes / 2; width >= 1; width /= 2) {
+    for (int l = 0; l < width; ++l) lane[l] += lane[l + width];
+  }
+  return lane[0] + tail;
 }
 
 /// The sums of FACTORS (ascending) over one pass: block by block, every factor in turn.
+/// Inlined into each clone below, so that the whole loop nest gets that clone's ISA.
 template <int Order>
-void shared_pass(const double* x, std::int64_t M, const std::int64_t* factors, std::size_t count,
-                 CompensatedSum* totals) {
+[[gnu::always_inline]] inline void shared_pass(const double* x, std::int64_t M,
+                                               const std::int64_t* factors, std::size_t count,
+                                               CompensatedSum* totals) {
   const std::int64_t longest = M - Order * factors[0];  // terms of the smallest factor
   for (std::int64_t begin = 0; begin < longest; begin += kDifferenceBlock) {
     for (std::size_t i = 0; i < count; ++i) {

@@ -54,9 +54,9 @@ stage() {
       n = split($0, parts, /[:,(]/)
       for (i = 1; i <= n; ++i) {
         f = parts[i]; gsub(/^ +| +$/, "", f)
-        if (index(f, name " ") == 1) { split(f, w, " "); print w[2]; exit }
+        if (index(f, name " ") == 1 && f ~ / s$/) { split(f, w, " "); print w[2]; exit }
       }
-    }' "$1" | head -1 | sed 's/^$/0/' || echo 0
+    }' "$1" | awk 'END { print (NR ? $0 : 0) }'
 }
 
 rate() {  # BYTES SECONDS -> "X MB/s" (decimal MB)
