@@ -1,21 +1,27 @@
 #include "io/csv_reader.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
+#include <cassert>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "common/errors.h"
 
@@ -87,6 +93,7 @@ class LineSource {
   LineSource& operator=(const LineSource&) = delete;
 
   std::size_t size_hint() const { return size_hint_; }
+  int fd() const { return fd_; }
   bool at_eof() const { return eof_; }
   /// Reports the bytes read after each block from now on (regular files only: the size is
   /// the total).
@@ -277,22 +284,51 @@ inline const char* scan_digits(const char* p, const char* e, std::uint64_t& w) {
   return p;
 }
 
-/// Fast path for the usual decimal tokens: a value w·10^q with integer w ≤ 2^53 and |q| ≤ 22
-/// is exactly w × 10^q or w / 10^−q, both exact operands, so one correctly rounded operation
-/// gives the correctly rounded result (Clinger, "How to Read Floating Point Numbers
-/// Accurately", PLDI 1990, §5). Returns false for anything else (more than 19 digits, large
-/// exponents, nan/inf, garbage); the caller then uses std::from_chars, which also decides what
-/// is malformed.
-inline bool parse_decimal_fast(const char* p, const char* e, double& out) {
+/// w × 10^q (or w / 10^−q) in x87 extended precision, rounded to double, for w < 2^64 and
+/// |q| ≤ 27: w and 10^|q| (5^27 < 2^64) are exact 64-bit-significand operands, so the one
+/// extended operation gives r = the correctly rounded 64-bit value of w·10^q. Rounding r to
+/// double gives the correctly rounded double unless r is itself a midpoint between two doubles
+/// (low 11 of its 64 significand bits = 100 0000 0000): a midpoint m strictly between the
+/// exact value and r would be a 64-bit number nearer than r. Returns false in that case (about
+/// 1 in 2048), and where long double is not the x87 format.
+inline bool scale_extended(std::uint64_t w, int exp10, double& out) {
+  if constexpr (std::numeric_limits<long double>::digits != 64 ||
+                std::endian::native != std::endian::little) {
+    return false;
+  } else {
+    static constexpr long double kPow10[] = {1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,
+                                             1e7L,  1e8L,  1e9L,  1e10L, 1e11L, 1e12L, 1e13L,
+                                             1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L, 1e20L,
+                                             1e21L, 1e22L, 1e23L, 1e24L, 1e25L, 1e26L, 1e27L};
+    if (exp10 < -27 || exp10 > 27) return false;
+    const auto v = static_cast<long double>(w);
+    const long double r = exp10 < 0 ? v / kPow10[-exp10] : v * kPow10[exp10];
+    std::uint64_t significand = 0;  // x87 layout: the explicit 64-bit significand comes first
+    std::memcpy(&significand, &r, sizeof significand);
+    if ((significand & 0x7FF) == 0x400) return false;
+    out = static_cast<double>(r);
+    return true;
+  }
+}
+
+/// Fast path for the usual decimal tokens, value w·10^q with at most 19 significant digits.
+/// With w ≤ 2^53 and |q| ≤ 22, w × 10^q or w / 10^−q has exact operands, so one correctly
+/// rounded operation gives the correctly rounded result (Clinger, "How to Read Floating Point
+/// Numbers Accurately", PLDI 1990, §5); the 17-digit shortest round-trip text of most doubles
+/// goes through scale_extended. Scans the number starting at P and leaves P after it;
+/// returns false for anything else (more digits, large exponents, nan/inf, garbage), and the
+/// caller then uses std::from_chars. What follows the number is the caller's to check: the
+/// result depends only on the bytes before P, so it is the same as for the token ending at P.
+inline bool parse_decimal_prefix(const char*& p, const char* e, double& out) {
   static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   const bool negative = p != e && *p == '-';
   if (negative) ++p;
+  const char* const digits_begin = p;
   std::uint64_t w = 0;
-  const char* int_begin = p;
   p = scan_digits(p, e, w);
-  std::ptrdiff_t digits = p - int_begin;
+  std::ptrdiff_t digits = p - digits_begin;
   int exp10 = 0;
   if (p != e && *p == '.') {
     const char* frac_begin = ++p;
@@ -300,7 +336,13 @@ inline bool parse_decimal_fast(const char* p, const char* e, double& out) {
     digits += p - frac_begin;
     exp10 = -static_cast<int>(p - frac_begin);
   }
-  if (digits == 0 || digits > 19) return false;
+  if (digits == 0) return false;
+  if (digits > 19) {
+    // Leading zeros ("0.000123…") add digits but not to w: count only the significant ones.
+    std::ptrdiff_t zeros = 0;
+    for (const char* z = digits_begin; z != p && (*z == '0' || *z == '.'); ++z) zeros += *z == '0';
+    if (digits - zeros > 19) return false;  // w has wrapped
+  }
   if (p != e && (*p == 'e' || *p == 'E')) {
     ++p;
     const bool exp_negative = p != e && *p == '-';
@@ -308,18 +350,26 @@ inline bool parse_decimal_fast(const char* p, const char* e, double& out) {
     if (p == e || !is_digit(*p)) return false;
     int x = 0;
     for (; p != e && is_digit(*p); ++p) {
-      if (x < 100000) x = x * 10 + (*p - '0');  // beyond ±22 we fall back anyway
+      if (x < 100000) x = x * 10 + (*p - '0');  // beyond ±27 we fall back anyway
     }
     exp10 += exp_negative ? -x : x;
   }
-  if (p != e || w > (std::uint64_t{1} << 53)) return false;
-  double v = static_cast<double>(w);
-  if (w != 0) {
-    if (exp10 < -22 || exp10 > 22) return false;
+  double v = 0.0;
+  if (w == 0) {
+    v = 0.0;
+  } else if (w <= (std::uint64_t{1} << 53) && exp10 >= -22 && exp10 <= 22) {
+    v = static_cast<double>(w);
     v = exp10 < 0 ? v / kPow10[-exp10] : v * kPow10[exp10];
+  } else if (!scale_extended(w, exp10, v)) {
+    return false;
   }
   out = negative ? -v : v;
   return true;
+}
+
+/// parse_decimal_prefix over a whole token [p, e).
+inline bool parse_decimal_fast(const char* p, const char* e, double& out) {
+  return parse_decimal_prefix(p, e, out) && p == e;
 }
 
 /// Parses a whole token as a double. Accepts a leading '+', nan/inf spellings (reported as
@@ -422,6 +472,13 @@ void LineMap::add(std::int64_t row, std::int64_t line) {
   next_line_ = line + 1;
 }
 
+void LineMap::add_run(std::int64_t row, std::int64_t line, std::int64_t count) {
+  if (count <= 0) return;
+  add(row, line);  // the rest of the run continues it: add() would record nothing for them
+  next_row_ = row + count;
+  next_line_ = line + count;
+}
+
 std::int64_t LineMap::line_of(std::size_t row) const {
   const auto r = static_cast<std::int64_t>(row);
   auto it = std::upper_bound(breaks_.begin(), breaks_.end(), r,
@@ -432,6 +489,468 @@ std::int64_t LineMap::line_of(std::size_t row) const {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Row conversion, shared by the streamed and the memory-mapped paths so both give the same
+// values and the same errors.
+
+namespace {
+
+/// What one read() extracts, shared read-only by all workers.
+struct ReadPlan {
+  std::size_t column_count = 0;
+  Delimiter delimiter = Delimiter::kWhitespace;
+  char separator = ' ';
+  bool drop_non_finite = false;
+  std::vector<int> slot_of;             // per file column: output slot, or -1 when not read
+  std::vector<unsigned char> relative;  // per slot; not vector<bool>: read per field
+  std::size_t slot_count() const { return relative.size(); }
+};
+
+enum class RowProblem {
+  kNone,
+  kEmptyField,
+  kMalformedNumber,
+  kNonFinite,
+  kColumnCount,
+  kLineTooLong,
+};
+
+/// A refused line, kept as data: workers then neither allocate nor throw, and the message is
+/// written once the line's number in the file is known.
+struct RowError {
+  RowProblem problem = RowProblem::kNone;
+  std::int64_t line = 0;         // 1-based; within its chunk until resolved
+  std::int64_t column = 0;       // 1-based byte in the line; 0 = the whole line
+  std::size_t field = 0;         // 0-based file column of a field problem
+  std::size_t fields_found = 0;  // kColumnCount
+  std::string_view token;        // the offending field (a view into the text)
+};
+
+std::string describe(const RowError& error, const TableLayout& layout,
+                     const std::string& count_origin) {
+  switch (error.problem) {
+    case RowProblem::kEmptyField:
+      return "empty field in " + layout.column_label(error.field);
+    case RowProblem::kMalformedNumber:
+      return "malformed number '" + show(error.token) + "' in " + layout.column_label(error.field);
+    case RowProblem::kNonFinite:
+      return "non-finite value '" + show(error.token) + "' in " + layout.column_label(error.field) +
+             " (set drop_non_finite / --drop-non-finite to drop such rows)";
+    case RowProblem::kColumnCount:
+      return "expected " + std::to_string(layout.column_count) + " columns (" + count_origin +
+             "), found " + std::to_string(error.fields_found);
+    case RowProblem::kLineTooLong:
+      return "line longer than 16 MiB: not a numeric text table";
+    case RowProblem::kNone:
+      break;
+  }
+  return "internal error: no row problem";
+}
+
+/// One row's values per slot; scratch sized once per thread.
+struct RowValues {
+  explicit RowValues(std::size_t slots) : value(slots), integer(slots), is_integer(slots) {}
+  std::vector<double> value;
+  std::vector<std::int64_t> integer;  // relative slots holding an integer token
+  std::vector<unsigned char> is_integer;
+  std::int64_t non_finite = 0;  // NaN/Inf values (only when dropping)
+};
+
+/// The first kept row's relative columns: what every kept row is made relative to.
+struct Origin {
+  explicit Origin(std::size_t slots) : value(slots, 0.0), integer(slots, 0), is_integer(slots, 0) {}
+  std::vector<double> value;  // as written (first_values)
+  std::vector<std::int64_t> integer;
+  std::vector<unsigned char> is_integer;
+
+  void set(const ReadPlan& plan, const RowValues& row) {
+    for (std::size_t s = 0; s < plan.slot_count(); ++s) {
+      if (!plan.relative[s]) continue;
+      is_integer[s] = row.is_integer[s];
+      integer[s] = row.integer[s];
+      value[s] = row.is_integer[s] ? static_cast<double>(row.integer[s]) : row.value[s];
+    }
+  }
+
+  /// Slot S of ROW relative to the origin: exact integer subtraction when both are integers
+  /// (ns stamps beyond 2^53), else in double.
+  double relative(std::size_t s, const RowValues& row) const {
+    std::int64_t diff = 0;
+    if (row.is_integer[s] && is_integer[s] &&
+        !__builtin_sub_overflow(row.integer[s], integer[s], &diff)) {
+      return static_cast<double>(diff);
+    }
+    const double v = row.is_integer[s] ? static_cast<double>(row.integer[s]) : row.value[s];
+    return v - value[s];
+  }
+};
+
+/// Converts field J = [b, e) (trimmed) of the line starting at LINE_BEGIN. False with ERROR
+/// set when the field is refused.
+inline bool convert_field(const ReadPlan& plan, std::size_t j, const char* line_begin,
+                          const char* b, const char* e, RowValues& row, RowError& error) {
+  const int slot = plan.slot_of[j];
+  if (slot < 0) return true;  // not requested: counted, not converted
+  const auto s = static_cast<std::size_t>(slot);
+  const auto column = static_cast<std::int64_t>(b - line_begin) + 1;
+  if (b == e) {
+    error = {RowProblem::kEmptyField, 0, column, j, 0, {}};
+    return false;
+  }
+  row.is_integer[s] = plan.relative[s] && parse_int64(b, e, row.integer[s]);
+  if (row.is_integer[s]) return true;
+  double v = 0.0;
+  if (!parse_double(b, e, v)) {
+    error = {RowProblem::kMalformedNumber, 0, column, j, 0, {b, static_cast<std::size_t>(e - b)}};
+    return false;
+  }
+  if (!std::isfinite(v)) {
+    if (!plan.drop_non_finite) {
+      error = {RowProblem::kNonFinite, 0, column, j, 0, {b, static_cast<std::size_t>(e - b)}};
+      return false;
+    }
+    ++row.non_finite;
+  }
+  row.value[s] = v;
+  return true;
+}
+
+/// The fast path of a requested plain column: a decimal number that ends where the field
+/// ends. Then the field is exactly the number's bytes (no blanks, quotes or '+'), and
+/// parse_double on it would take the same parse_decimal_prefix path: same value. P moves past
+/// the number.
+inline bool convert_plain_number(const ReadPlan& plan, std::size_t j, const char*& p,
+                                 const char* end, RowValues& row) {
+  if (j >= plan.column_count) return false;
+  const int slot = plan.slot_of[j];
+  if (slot < 0 || plan.relative[static_cast<std::size_t>(slot)]) return false;
+  const char* q = p;
+  double v = 0.0;
+  if (!parse_decimal_prefix(q, end, v)) return false;
+  if (q != end) {
+    const bool field_ends =
+        plan.delimiter == Delimiter::kWhitespace ? is_blank(*q) : *q == plan.separator;
+    if (!field_ends) return false;
+  }
+  row.value[static_cast<std::size_t>(slot)] = v;
+  p = q;
+  return true;
+}
+
+/// Splits a content line like for_each_field and converts the requested fields, in field
+/// order, so the first refused field is the one reported. False with ERROR (line unset) when
+/// the line is refused; ROW.non_finite > 0 means the row is to be dropped.
+inline bool parse_row(const ReadPlan& plan, std::string_view line, RowValues& row,
+                      RowError& error) {
+  row.non_finite = 0;
+  const char* const begin = line.data();
+  const char* const end = begin + line.size();
+  const std::size_t ncols = plan.column_count;
+  const char* p = begin;
+  std::size_t count = 0;
+  const char* extra_field = nullptr;  // first field beyond the expected count
+  if (plan.delimiter == Delimiter::kWhitespace) {
+    for (;;) {
+      while (p != end && is_blank(*p)) ++p;
+      if (p == end) break;
+      if (convert_plain_number(plan, count, p, end, row)) {
+        ++count;
+        continue;
+      }
+      const char* b = p;
+      while (p != end && !is_blank(*p)) ++p;
+      if (count < ncols) {
+        if (!convert_field(plan, count, begin, b, p, row, error)) return false;
+      } else if (count == ncols) {
+        extra_field = b;
+      }
+      ++count;
+    }
+  } else {
+    const char sep = plan.separator;
+    for (;;) {
+      if (convert_plain_number(plan, count, p, end, row)) {
+        ++count;
+        if (p == end) break;
+        ++p;  // past the separator
+        continue;
+      }
+      const char* d =
+          static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
+      const char* fe = d != nullptr ? d : end;
+      const char* b = p;
+      while (b != fe && is_blank(*b)) ++b;
+      const char* e = fe;
+      while (e != b && is_blank(e[-1])) --e;
+      if (count < ncols) {
+        if (!convert_field(plan, count, begin, b, e, row, error)) return false;
+      } else if (count == ncols) {
+        extra_field = b;
+      }
+      ++count;
+      if (d == nullptr) break;
+      p = d + 1;
+    }
+  }
+  if (count != ncols) {
+    const auto column = extra_field != nullptr ? static_cast<std::int64_t>(extra_field - begin) + 1
+                                               : static_cast<std::int64_t>(line.size()) + 1;
+    error = {RowProblem::kColumnCount, 0, column, 0, count, {}};
+    return false;
+  }
+  return true;
+}
+
+/// Cuts the next line off [p, end): strips "\n" and "\r\n". The caller strips the BOM.
+inline std::string_view cut_line(const char*& p, const char* end) {
+  const auto* nl =
+      static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+  const char* line_end = nl != nullptr ? nl : end;
+  std::string_view line(p, static_cast<std::size_t>(line_end - p));
+  p = nl != nullptr ? nl + 1 : end;
+  return line;
+}
+
+/// LineSource's limit, applied to a mapped line (CR included, as LineSource counts it).
+inline bool line_too_long(std::string_view line) { return line.size() >= kMaxLineBytes; }
+
+inline void strip_cr(std::string_view& line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+}
+
+/// A read-only private mapping of a whole regular file, unmapped on destruction.
+class MappedText {
+ public:
+  MappedText() = default;
+  ~MappedText() {
+    if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
+  }
+  MappedText(const MappedText&) = delete;
+  MappedText& operator=(const MappedText&) = delete;
+
+  /// Maps FD; false (nothing mapped) when the file is not a regular file or mmap fails.
+  bool map(int fd) {
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size <= 0) return false;
+    const auto size = static_cast<std::size_t>(st.st_size);
+    void* at = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (at == MAP_FAILED) return false;
+    data_ = static_cast<const char*>(at);
+    size_ = size;
+    ::madvise(at, size, MADV_SEQUENTIAL);  // a hint: more read-ahead on a cold cache
+    return true;
+  }
+
+  const char* begin() const { return data_; }
+  const char* end() const { return data_ + size_; }
+  std::size_t size() const { return size_; }
+
+  /// Drops the mapping's pages wholly inside [b, e) from this process's memory (they stay in
+  /// the page cache, and come back on the next access): the resident size then stays near the
+  /// output's, not output + file.
+  void release(const char* b, const char* e) const {
+    const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+    const auto base = reinterpret_cast<std::uintptr_t>(data_);
+    const std::uintptr_t from = (reinterpret_cast<std::uintptr_t>(b) + page - 1) / page * page;
+    const std::uintptr_t to = std::max(from, reinterpret_cast<std::uintptr_t>(e) / page * page);
+    if (to > from && from >= base) {
+      ::madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED);
+    }
+  }
+
+ private:
+  const char* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+/// Consecutive kept rows on consecutive lines, chunk-local (LineMap::add_run after the join).
+struct LineRun {
+  std::int64_t row = 0;
+  std::int64_t line = 0;
+  std::int64_t count = 0;
+};
+
+/// A piece of the mapped data region, starting at a line start and ending after a newline (or
+/// at the end of the file).
+struct Chunk {
+  const char* begin = nullptr;
+  const char* end = nullptr;
+  std::int64_t lines = 0;         // lines starting in the chunk (pass 1)
+  std::int64_t lines_before = 0;  // file lines before the chunk
+  std::size_t row_begin = 0;      // first output row it may fill
+  std::size_t row_capacity = 0;   // rows it may fill: a bound on its kept rows
+  std::size_t kept = 0;
+  std::int64_t rows_dropped = 0;
+  std::int64_t non_finite_dropped = 0;
+  std::vector<LineRun> runs;
+  RowError error;  // the chunk's first refused line (problem kNone: none)
+};
+
+/// Runs WORK(i) for i in [0, count) on up to THREADS threads, the caller included; the
+/// caller calls AFTER_OWN() after each of its items (so progress is reported from the calling
+/// thread only). Items are handed out in increasing order. The first exception is rethrown.
+template <typename Work, typename AfterOwn>
+void run_in_parallel(std::size_t count, unsigned threads, Work&& work, AfterOwn&& after_own) {
+  std::atomic<std::size_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  const auto loop = [&](bool caller) {
+    try {
+      for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) {
+        work(i);
+        if (caller) after_own();
+      }
+    } catch (...) {
+      const std::lock_guard lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next.store(count);
+    }
+  };
+  std::vector<std::thread> pool;
+  const std::size_t helpers = std::min<std::size_t>(threads, count) - (count > 0 ? 1 : 0);
+  for (std::size_t t = 0; t < helpers; ++t) {
+    try {
+      pool.emplace_back(loop, false);
+    } catch (const std::system_error&) {
+      break;  // no more threads: the ones running share the remaining items
+    }
+  }
+  loop(true);
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+/// Counts '\n' in [b, e), 8 bytes per step: a byte of x = word ^ "\n\n…" is zero exactly when
+/// bit 7 of ((x & 0x7F…) + 0x7F…) | x is clear (no carry crosses a byte: each lane is ≤ 0xFE).
+/// The multiply sums the 0/1 bytes into the top byte (at most 8: no carry out); a portable
+/// popcount without -mpopcnt would be a library call.
+std::int64_t count_newlines(const char* b, const char* e) {
+  constexpr std::uint64_t kNewlines = 0x0A0A0A0A0A0A0A0Au;
+  constexpr std::uint64_t kLow7 = 0x7F7F7F7F7F7F7F7Fu;
+  std::int64_t n = 0;
+  for (; e - b >= 8; b += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, b, 8);
+    const std::uint64_t x = word ^ kNewlines;
+    const std::uint64_t found = ~(((x & kLow7) + kLow7) | x | kLow7) >> 7;  // 0 or 1 per byte
+    n += static_cast<std::int64_t>((found * 0x0101010101010101u) >> 56);    // sum of the bytes
+  }
+  for (; b != e; ++b) n += *b == '\n';
+  return n;
+}
+
+}  // namespace
+
+namespace {
+
+/// Sequential handling of lines in file order: the streamed path, and the mapped path up to
+/// its first kept row. Throws at the first refused line.
+class SequentialRows {
+ public:
+  SequentialRows(const ReadPlan& plan, const TableLayout& layout, std::int64_t header_line,
+                 const std::string& count_origin, TableData& data, Origin& origin)
+      : plan_(plan),
+        layout_(layout),
+        header_line_(header_line),
+        count_origin_(count_origin),
+        data_(data),
+        origin_(origin),
+        row_(plan.slot_count()) {}
+
+  /// Takes line LINE_NO (CR and BOM stripped). True when it is kept, as row kept() − 1, with
+  /// its final values (relative columns made relative) in values().
+  bool take(std::string_view line, std::int64_t line_no) {
+    if (!is_content(line) || line_no == header_line_) return false;
+    RowError error;
+    if (!parse_row(plan_, line, row_, error)) fail(error, line_no);
+    if (row_.non_finite > 0) {
+      ++data_.rows_dropped;
+      data_.non_finite_dropped += row_.non_finite;
+      return false;
+    }
+    if (kept_ == 0) {
+      origin_.set(plan_, row_);
+      data_.first_data_line = line_no;
+    }
+    for (std::size_t s = 0; s < plan_.slot_count(); ++s) {
+      if (plan_.relative[s]) row_.value[s] = origin_.relative(s, row_);
+    }
+    data_.lines.add(kept_, line_no);
+    ++kept_;
+    return true;
+  }
+
+  const std::vector<double>& values() const { return row_.value; }
+  std::int64_t kept() const { return kept_; }
+
+  [[noreturn]] void fail(const RowError& error, std::int64_t line_no) const {
+    throw InputError(located_message(layout_.path, line_no, error.column,
+                                     describe(error, layout_, count_origin_)));
+  }
+
+ private:
+  const ReadPlan& plan_;
+  const TableLayout& layout_;
+  std::int64_t header_line_;
+  const std::string& count_origin_;
+  TableData& data_;
+  Origin& origin_;
+  RowValues row_;
+  std::int64_t kept_ = 0;
+};
+
+/// Parses CHUNK into its slice of the output columns (OUT[s] + chunk.row_begin …). Stops at
+/// its first refused line, or early once a chunk before it (index < INDEX) has failed.
+void parse_chunk(const ReadPlan& plan, const Origin& origin, Chunk& chunk, std::size_t index,
+                 const std::vector<double*>& out, std::atomic<std::size_t>& first_failed) {
+  constexpr std::int64_t kCheckEvery = 4096;  // lines between looks at first_failed
+  RowValues row(plan.slot_count());
+  const std::size_t slots = plan.slot_count();
+  const char* p = chunk.begin;
+  std::int64_t line_no = 0;  // within the chunk, 1-based
+  std::size_t kept = 0;
+  while (p != chunk.end) {
+    std::string_view line = cut_line(p, chunk.end);
+    ++line_no;
+    if ((line_no % kCheckEvery) == 0 && first_failed.load(std::memory_order_relaxed) < index) {
+      break;  // an earlier chunk's error wins; this chunk's rows no longer matter
+    }
+    if (line_too_long(line)) {
+      chunk.error = {RowProblem::kLineTooLong, line_no, 0, 0, 0, {}};
+      break;
+    }
+    strip_cr(line);  // line 1 (the only one with a BOM) is never in a chunk
+    if (!is_content(line)) continue;
+    if (!parse_row(plan, line, row, chunk.error)) {
+      chunk.error.line = line_no;
+      break;
+    }
+    if (row.non_finite > 0) {
+      ++chunk.rows_dropped;
+      chunk.non_finite_dropped += row.non_finite;
+      continue;
+    }
+    assert(kept < chunk.row_capacity && "the bound on kept rows per chunk holds");
+    const std::size_t at = chunk.row_begin + kept;
+    for (std::size_t s = 0; s < slots; ++s) {
+      out[s][at] = plan.relative[s] ? origin.relative(s, row) : row.value[s];
+    }
+    const auto row_index = static_cast<std::int64_t>(kept);
+    if (chunk.runs.empty() || chunk.runs.back().row + chunk.runs.back().count != row_index ||
+        chunk.runs.back().line + chunk.runs.back().count != line_no) {
+      chunk.runs.push_back({row_index, line_no, 0});
+    }
+    ++chunk.runs.back().count;
+    ++kept;
+  }
+  chunk.kept = kept;
+  if (chunk.error.problem != RowProblem::kNone) {
+    std::size_t seen = first_failed.load();
+    while (index < seen && !first_failed.compare_exchange_weak(seen, index)) {
+    }
+  }
+}
+
+}  // namespace
 
 struct TableReader::Impl {
   std::string path;
@@ -515,6 +1034,157 @@ struct TableReader::Impl {
       first_data_line = numbers[0];
     }
   }
+
+  /// The streamed path: every line through ROWS, in 1 MiB blocks. Returns the kept rows.
+  std::int64_t read_streamed(SequentialRows& rows, const ProgressCallback& progress,
+                             std::vector<std::vector<double>>& values) {
+    // Only while this call runs: the callback is the caller's.
+    struct ProgressScope {
+      LineSource& source;
+      ~ProgressScope() { source.set_progress(nullptr); }
+    } progress_scope{source};
+    if (progress) source.set_progress(&progress);
+    if (source.size_hint() > 0 && mean_line_bytes > 0.0) {
+      const double estimate = static_cast<double>(source.size_hint()) / mean_line_bytes;
+      const auto count = static_cast<std::size_t>(
+          std::min(estimate * 1.02 + 16.0, static_cast<double>(source.size_hint() / 2 + 16)));
+      for (auto& v : values) v.reserve(count);
+    }
+    std::string_view line;
+    while (source.next(line)) {
+      if (!rows.take(line, source.line_number())) continue;
+      const std::vector<double>& row = rows.values();
+      for (std::size_t s = 0; s < values.size(); ++s) values[s].push_back(row[s]);
+    }
+    return rows.kept();
+  }
+
+  /// The mapped path. Lines up to the first kept row go through ROWS in this thread (that row
+  /// is the origin of relative columns); the rest is cut into chunks at line ends. Pass 1
+  /// counts each chunk's lines, which bounds its rows and fixes where its slice of the output
+  /// starts; pass 2 parses the chunks in parallel straight into the output columns; then the
+  /// slices are closed up over skipped lines in file order. Returns the kept rows.
+  std::int64_t read_mapped(const MappedText& text, const ReadPlan& plan, SequentialRows& rows,
+                           const Origin& origin, unsigned threads, std::size_t chunk_bytes,
+                           const ProgressCallback& progress,
+                           std::vector<std::vector<double>>& values, TableData& data) {
+    const char* p = text.begin();
+    std::int64_t line_no = 0;
+    std::vector<double> first_row;
+    while (p != text.end()) {
+      std::string_view line = cut_line(p, text.end());
+      ++line_no;
+      if (line_too_long(line)) {
+        rows.fail({RowProblem::kLineTooLong, 0, 0, 0, 0, {}}, line_no);
+      }
+      strip_cr(line);
+      if (line_no == 1 && line.substr(0, kUtf8Bom.size()) == kUtf8Bom) {
+        line.remove_prefix(kUtf8Bom.size());
+      }
+      if (rows.take(line, line_no)) {
+        first_row = rows.values();
+        break;
+      }
+    }
+    if (rows.kept() == 0) return 0;
+
+    // Chunks of the rest, each ending after a newline.
+    const char* const region = p;
+    const auto region_bytes = static_cast<std::size_t>(text.end() - region);
+    if (chunk_bytes == 0) {
+      constexpr std::size_t kMinChunk = std::size_t{1} << 20;
+      constexpr std::size_t kMaxChunk = std::size_t{64} << 20;
+      // Several chunks per thread: the load balances and progress moves.
+      chunk_bytes = std::clamp(region_bytes / (std::size_t{8} * threads), kMinChunk, kMaxChunk);
+    }
+    std::vector<Chunk> chunks;
+    for (const char* b = region; b != text.end();) {
+      const char* e = text.end();
+      if (static_cast<std::size_t>(text.end() - b) > chunk_bytes) {
+        const char* cut = b + chunk_bytes;
+        const auto* nl = static_cast<const char*>(
+            std::memchr(cut - 1, '\n', static_cast<std::size_t>(text.end() - (cut - 1))));
+        if (nl != nullptr) e = nl + 1;
+      }
+      chunks.push_back(Chunk{});
+      chunks.back().begin = b;
+      chunks.back().end = e;
+      b = e;
+    }
+
+    // Pass 1: lines per chunk (a final line without a newline counts too).
+    const auto nothing = [] {};
+    run_in_parallel(
+        chunks.size(), threads,
+        [&](std::size_t i) {
+          Chunk& c = chunks[i];
+          c.lines = count_newlines(c.begin, c.end) + (c.end[-1] != '\n' ? 1 : 0);
+          text.release(c.begin, c.end);
+        },
+        nothing);
+    // A kept row has all its fields, the requested ones not empty, and a line end (but the
+    // last): a chunk of B bytes holds at most (B + 1) / (that + 1) of them. This caps the
+    // output reserved for files of mostly blank or comment lines.
+    const std::size_t min_row_bytes = plan.column_count - 1 + plan.slot_count();
+    std::size_t bound = 1;  // row 0 is the first kept row
+    std::int64_t lines_before = line_no;
+    for (Chunk& c : chunks) {
+      const auto bytes = static_cast<std::size_t>(c.end - c.begin);
+      c.lines_before = lines_before;
+      c.row_begin = bound;
+      c.row_capacity =
+          std::min(static_cast<std::size_t>(c.lines), (bytes + 1) / (min_row_bytes + 1));
+      lines_before += c.lines;
+      bound += c.row_capacity;
+    }
+    std::vector<double*> out(values.size());
+    for (std::size_t s = 0; s < values.size(); ++s) {
+      values[s].resize(bound);
+      values[s][0] = first_row[s];
+      out[s] = values[s].data();
+    }
+
+    // Pass 2: parse. Progress counts the bytes of finished chunks, reported by this thread.
+    const auto total = static_cast<std::int64_t>(text.size());
+    std::atomic<std::int64_t> done{static_cast<std::int64_t>(region - text.begin())};
+    std::atomic<std::size_t> first_failed{chunks.size()};
+    run_in_parallel(
+        chunks.size(), threads,
+        [&](std::size_t i) {
+          Chunk& c = chunks[i];
+          if (first_failed.load() > i) {
+            parse_chunk(plan, origin, c, i, out, first_failed);
+            text.release(c.begin, c.end);
+          }
+          done.fetch_add(c.end - c.begin);
+        },
+        [&] { report_progress(progress, "reading", done.load(), total); });
+
+    if (first_failed.load() < chunks.size()) {
+      const Chunk& c = chunks[first_failed.load()];
+      rows.fail(c.error, c.lines_before + c.error.line);
+    }
+
+    // Close the slices up in file order; in a file without skipped lines nothing moves.
+    std::size_t kept = 1;
+    for (const Chunk& c : chunks) {
+      if (c.kept > 0 && c.row_begin != kept) {
+        for (std::vector<double>& v : values) {
+          std::memmove(v.data() + kept, v.data() + c.row_begin, c.kept * sizeof(double));
+        }
+      }
+      for (const LineRun& run : c.runs) {
+        data.lines.add_run(static_cast<std::int64_t>(kept) + run.row, c.lines_before + run.line,
+                           run.count);
+      }
+      data.rows_dropped += c.rows_dropped;
+      data.non_finite_dropped += c.non_finite_dropped;
+      kept += c.kept;
+    }
+    for (std::vector<double>& v : values) v.resize(kept);
+    report_progress(progress, "reading", total, total);
+    return static_cast<std::int64_t>(kept);
+  }
 };
 
 TableReader::TableReader(std::string path, Delimiter delimiter)
@@ -558,136 +1228,56 @@ std::size_t TableReader::resolve_column(std::string_view selector) const {
 }
 
 TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_non_finite,
-                            const ProgressCallback& progress) {
+                            const ProgressCallback& progress, const ReadParallelism& parallelism) {
   Impl& im = *impl_;
   if (im.consumed) throw std::logic_error("TableReader::read called twice");
   im.consumed = true;
-  // Only while this call runs: the callback is the caller's.
-  struct ProgressScope {
-    LineSource& source;
-    ~ProgressScope() { source.set_progress(nullptr); }
-  } progress_scope{im.source};
-  if (progress) im.source.set_progress(&progress);
   const TableLayout& layout = im.layout;
-  const std::size_t ncols = layout.column_count;
-  const Delimiter delimiter = layout.delimiter;
 
   // slot_of[column] = output slot or -1; a column requested twice is parsed once.
-  std::vector<int> slot_of(ncols, -1);
-  std::vector<std::size_t> column_of_slot;
-  std::vector<unsigned char> relative;  // not vector<bool>: read per field, keep it plain
+  ReadPlan plan;
+  plan.column_count = layout.column_count;
+  plan.delimiter = layout.delimiter;
+  plan.separator = delimiter_char(layout.delimiter);
+  plan.drop_non_finite = drop_non_finite;
+  plan.slot_of.assign(plan.column_count, -1);
   std::vector<std::size_t> output_slot(columns.size());
   for (std::size_t r = 0; r < columns.size(); ++r) {
     const ColumnRequest& req = columns[r];
-    if (req.index >= ncols) throw std::out_of_range("TableReader::read: column index");
-    int& slot = slot_of[req.index];
+    if (req.index >= plan.column_count) throw std::out_of_range("TableReader::read: column index");
+    int& slot = plan.slot_of[req.index];
     if (slot < 0) {
-      slot = static_cast<int>(column_of_slot.size());
-      column_of_slot.push_back(req.index);
-      relative.push_back(req.relative_to_first);
-    } else if (static_cast<bool>(relative[static_cast<std::size_t>(slot)]) !=
+      slot = static_cast<int>(plan.relative.size());
+      plan.relative.push_back(req.relative_to_first);
+    } else if (static_cast<bool>(plan.relative[static_cast<std::size_t>(slot)]) !=
                req.relative_to_first) {
       throw std::invalid_argument("TableReader::read: column requested both relative and not");
     }
     output_slot[r] = static_cast<std::size_t>(slot);
   }
-  const std::size_t nslots = column_of_slot.size();
-
-  std::vector<std::vector<double>> values(nslots);
-  if (im.source.size_hint() > 0 && im.mean_line_bytes > 0.0) {
-    const double estimate = static_cast<double>(im.source.size_hint()) / im.mean_line_bytes;
-    const auto rows = static_cast<std::size_t>(
-        std::min(estimate * 1.02 + 16.0, static_cast<double>(im.source.size_hint() / 2 + 16)));
-    for (auto& v : values) v.reserve(rows);
-  }
-
-  // Per-row scratch, sized once: no allocation inside the loop.
-  std::vector<double> row(nslots);
-  std::vector<std::int64_t> row_int(nslots);
-  std::vector<unsigned char> row_is_int(nslots);
-  std::vector<double> first_double(nslots, 0.0);
-  std::vector<std::int64_t> first_int(nslots, 0);
-  std::vector<unsigned char> first_is_int(nslots, 0);
+  const std::size_t nslots = plan.slot_count();
 
   TableData data;
-  std::int64_t kept = 0;
+  std::vector<std::vector<double>> values(nslots);
+  Origin origin(nslots);
   const std::string count_origin =
       layout.has_header()
           ? "as in the header on line " + std::to_string(layout.header_line)
           : "as in the first data row on line " + std::to_string(im.first_data_line);
+  SequentialRows rows(plan, layout, layout.header_line, count_origin, data, origin);
 
-  std::string_view line;
-  while (im.source.next(line)) {
-    const std::int64_t line_no = im.source.line_number();
-    if (!is_content(line) || line_no == layout.header_line) continue;
-
-    std::int64_t non_finite = 0;
-    const char* extra_field = nullptr;
-    const std::size_t count =
-        for_each_field(line, delimiter, [&](std::size_t j, const char* b, const char* e) {
-          if (j >= ncols) {
-            if (j == ncols) extra_field = b;
-            return;
-          }
-          const int slot = slot_of[j];
-          if (slot < 0) return;  // not requested: counted, not converted
-          const auto s = static_cast<std::size_t>(slot);
-          const auto column = static_cast<std::int64_t>(b - line.data()) + 1;
-          if (b == e) im.fail(line_no, column, "empty field in " + layout.column_label(j));
-          row_is_int[s] = relative[s] && parse_int64(b, e, row_int[s]);
-          if (row_is_int[s]) return;
-          double v = 0.0;
-          if (!parse_double(b, e, v)) {
-            im.fail(line_no, column,
-                    "malformed number '" + show({b, static_cast<std::size_t>(e - b)}) + "' in " +
-                        layout.column_label(j));
-          }
-          if (!std::isfinite(v)) {
-            if (!drop_non_finite) {
-              im.fail(line_no, column,
-                      "non-finite value '" + show({b, static_cast<std::size_t>(e - b)}) + "' in " +
-                          layout.column_label(j) +
-                          " (set drop_non_finite / --drop-non-finite to drop such rows)");
-            }
-            ++non_finite;
-          }
-          row[s] = v;
-        });
-    if (count != ncols) {
-      const auto column = extra_field != nullptr
-                              ? static_cast<std::int64_t>(extra_field - line.data()) + 1
-                              : static_cast<std::int64_t>(line.size()) + 1;
-      im.fail(line_no, column,
-              "expected " + std::to_string(ncols) + " columns (" + count_origin + "), found " +
-                  std::to_string(count));
-    }
-    if (non_finite > 0) {
-      ++data.rows_dropped;
-      data.non_finite_dropped += non_finite;
-      continue;
-    }
-
-    for (std::size_t s = 0; s < nslots; ++s) {
-      if (relative[s]) {
-        if (kept == 0) {
-          first_is_int[s] = row_is_int[s];
-          first_int[s] = row_int[s];
-          first_double[s] = row_is_int[s] ? static_cast<double>(row_int[s]) : row[s];
-        }
-        std::int64_t diff = 0;
-        if (row_is_int[s] && first_is_int[s] &&
-            !__builtin_sub_overflow(row_int[s], first_int[s], &diff)) {
-          row[s] = static_cast<double>(diff);
-        } else {
-          const double v = row_is_int[s] ? static_cast<double>(row_int[s]) : row[s];
-          row[s] = v - first_double[s];
-        }
-      }
-      values[s].push_back(row[s]);
-    }
-    if (kept == 0) data.first_data_line = line_no;
-    data.lines.add(kept, line_no);
-    ++kept;
+  MappedText mapped;
+  const bool use_mapping = im.source.size_hint() > 0 &&
+                           im.source.size_hint() >= parallelism.min_mapped_bytes &&
+                           mapped.map(im.source.fd());
+  std::int64_t kept = 0;
+  if (use_mapping) {
+    unsigned threads = parallelism.threads;
+    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    kept = im.read_mapped(mapped, plan, rows, origin, threads, parallelism.chunk_bytes, progress,
+                          values, data);
+  } else {
+    kept = im.read_streamed(rows, progress, values);
   }
 
   if (kept == 0) {
@@ -709,7 +1299,7 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
       last_use = last_use && output_slot[later] != s;
     }
     data.columns[r] = last_use ? std::move(values[s]) : values[s];
-    data.first_values[r] = relative[s] ? first_double[s] : data.columns[r].front();
+    data.first_values[r] = plan.relative[s] ? origin.value[s] : data.columns[r].front();
   }
   return data;
 }
@@ -750,7 +1340,8 @@ Series read_series(const std::string& path, const SeriesReadOptions& options) {
   std::vector<ColumnRequest> requests{{column, false}};
   // Stamps relative to the first keep their digits (e.g. ns since the epoch beyond 2^53).
   if (time_column) requests.push_back({*time_column, true});
-  TableData data = reader.read(requests, options.drop_non_finite);
+  TableData data = reader.read(requests, options.drop_non_finite, {},
+                               ReadParallelism{.threads = options.threads});
   Series series;
   if (time_column) {
     series.time_column = time_name;
@@ -854,7 +1445,7 @@ std::optional<GroupMapping<Unit>> map_group(
 }  // namespace
 
 Recording read_recording(const std::string& path, const InputConfig& config,
-                         const ProgressCallback& progress) {
+                         const ProgressCallback& progress, unsigned threads) {
   TableReader reader(path, config.delimiter.value_or(Delimiter::kAuto));
   const TableLayout& layout = reader.layout();
 
@@ -929,7 +1520,8 @@ Recording read_recording(const std::string& path, const InputConfig& config,
     }
   }
 
-  TableData data = reader.read(requests, config.drop_non_finite.value_or(false), progress);
+  TableData data = reader.read(requests, config.drop_non_finite.value_or(false), progress,
+                               ReadParallelism{.threads = threads});
   const std::size_t n = data.columns.front().size();
 
   Recording rec;

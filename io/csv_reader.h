@@ -1,7 +1,9 @@
 /// @file
-/// @brief Streaming reader of numeric text tables (CSV, TSV, space- or semicolon-separated,
-/// one number per line), and the two entry points built on it: `read_series` (one column, for
-/// `imunoise allan`) and `read_recording` (an IMU recording in SI).
+/// @brief Reader of numeric text tables (CSV, TSV, space- or semicolon-separated, one number
+/// per line), and the two entry points built on it: `read_series` (one column, for
+/// `imunoise allan`) and `read_recording` (an IMU recording in SI). Large regular files are
+/// memory-mapped and parsed by chunks in parallel; pipes and small files are streamed. Both
+/// paths give the same values, line numbers and errors.
 ///
 /// Accepted: an optional header row of column names (else columns are addressed by 1-based
 /// index), '#' comment lines and blank lines anywhere, CRLF, a UTF-8 BOM, no final newline.
@@ -44,7 +46,11 @@ struct TableLayout {
 class LineMap {
  public:
   void add(std::int64_t row, std::int64_t line);  ///< call for rows in increasing order
-  std::int64_t line_of(std::size_t row) const;    ///< 0 if no row was added
+  /// Same as add(row + i, line + i) for i in [0, count).
+  void add_run(std::int64_t row, std::int64_t line, std::int64_t count);
+  std::int64_t line_of(std::size_t row) const;  ///< 0 if no row was added
+
+  friend bool operator==(const LineMap&, const LineMap&) = default;
 
  private:
   std::vector<std::pair<std::int64_t, std::int64_t>> breaks_;  // (row, line), line − row changes
@@ -69,9 +75,19 @@ struct TableData {
   LineMap lines;                        ///< row → file line
 };
 
-/// Opens a table and finds its layout; read() then streams the rows (1 MiB blocks,
-/// std::from_chars, no per-line allocation). Only requested columns are converted, but every
-/// row's column count is checked.
+/// How TableReader::read divides its work. The defaults suit every caller; the chunk and size
+/// knobs exist so tests can force the parallel path on small files.
+struct ReadParallelism {
+  unsigned threads = 0;  ///< worker threads including the caller; 0 = hardware concurrency
+  /// Regular files at least this large are memory-mapped and parsed by chunks; smaller ones
+  /// (and pipes) are streamed, where starting threads does not pay.
+  std::size_t min_mapped_bytes = std::size_t{4} << 20;
+  std::size_t chunk_bytes = 0;  ///< bytes per chunk (rounded up to a line end); 0 = automatic
+};
+
+/// Opens a table and finds its layout; read() then parses the rows: memory-mapped by chunks on
+/// several threads, or streamed in 1 MiB blocks (std::from_chars, no per-line allocation).
+/// Only requested columns are converted, but every row's column count is checked.
 class TableReader {
  public:
   /// Throws InputError when the file cannot be opened, is empty, or has no data rows.
@@ -90,10 +106,11 @@ class TableReader {
   /// Reads all rows once. NaN/Inf: InputError, or with drop_non_finite the row is dropped and
   /// counted. Throws InputError at the first malformed token or wrong column count. A column
   /// may be requested twice only with the same relative_to_first (else invalid_argument).
-  /// PROGRESS (optional) gets ("reading", bytes read, file size) after each block read from a
-  /// regular file.
+  /// PROGRESS (optional) gets ("reading", bytes parsed, file size) from the calling thread
+  /// after each block or chunk of a regular file. The result and the error (the first in file
+  /// order) do not depend on PARALLELISM.
   TableData read(std::span<const ColumnRequest> columns, bool drop_non_finite,
-                 const ProgressCallback& progress = {});
+                 const ProgressCallback& progress = {}, const ReadParallelism& parallelism = {});
 
  private:
   struct Impl;
@@ -109,6 +126,7 @@ struct SeriesReadOptions {
   /// Also read the time column, if the header names one (time_s, time_ms, time_us, time_ns),
   /// converted to seconds relative to the first stamp.
   bool read_time = false;
+  unsigned threads = 0;  ///< parsing threads (ReadParallelism::threads); 0 = hardware concurrency
 };
 
 struct Series {
@@ -128,8 +146,9 @@ Series read_series(const std::string& path, const SeriesReadOptions& options);
 /// Reads an IMU recording per `config` (see InputConfig for the automatic mapping) and
 /// converts it to SI: rates in rad/s and m/s², increments divided by the sample period.
 /// Fills the sampling report; non-monotonic time stamps are reported, not fatal. PROGRESS
-/// (optional) follows the bytes read, as in TableReader::read.
+/// (optional) follows the bytes read, as in TableReader::read. THREADS parse large files
+/// (ReadParallelism::threads; 0 = hardware concurrency); the result does not depend on it.
 Recording read_recording(const std::string& path, const InputConfig& config,
-                         const ProgressCallback& progress = {});
+                         const ProgressCallback& progress = {}, unsigned threads = 0);
 
 }  // namespace imunoise::io
