@@ -13,6 +13,7 @@
 #include "analysis/deviation.h"
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
+#include "io/binary_recording.h"
 #include "io/csv_reader.h"
 #include "io/sampling_report.h"
 #include "tools/commands.h"
@@ -59,9 +60,10 @@ const char* edf_model(analysis::DeviationType type) {
   }
 }
 
-/// One channel of an LCM log (--channel) as a series: --column names the recording channel
-/// (gyro_x … accel_z, temperature), with its time stamps.
-io::Series lcm_series(const AllanArgs& args, const io::SeriesReadOptions& read_options) {
+/// One channel of an LCM log (--channel) or of an imunoise binary recording as a series:
+/// --column names the recording channel (gyro_x … accel_z, temperature), with its time stamps.
+io::Series recording_series(const AllanArgs& args, const io::SeriesReadOptions& read_options,
+                            bool lcm_log) {
   io::InputConfig config;
   config.drop_non_finite = read_options.drop_non_finite;
   io::Recording recording = read_input_recording(args.file, config, args.lcm);
@@ -72,8 +74,8 @@ io::Series lcm_series(const AllanArgs& args, const io::SeriesReadOptions& read_o
   }
   const io::Channel* channel = recording.find_channel(args.column);
   if (channel == nullptr) {
-    throw InputError(args.file + ": --column '" + args.column + "' is not a channel of the log (" +
-                     names + ")");
+    throw InputError(args.file + ": --column '" + args.column + "' is not a channel of the " +
+                     (lcm_log ? "log" : "recording") + " (" + names + ")");
   }
   io::Series series;
   series.source_path = args.file;
@@ -81,7 +83,7 @@ io::Series lcm_series(const AllanArgs& args, const io::SeriesReadOptions& read_o
   series.values = channel->values;
   series.non_finite_dropped = recording.report.non_finite_dropped;
   if (read_options.read_time) {
-    series.time_column = "utime";
+    series.time_column = lcm_log ? "utime" : "time_s";
     series.time_s = std::move(recording.time_s);
   }
   return series;
@@ -101,8 +103,11 @@ void run_allan(const AllanArgs& args, StageTimes& times) {
   read_options.column = args.column;
   read_options.drop_non_finite = args.drop_non_finite;
   read_options.read_time = !tau0_given;
-  const io::Series series = is_lcm_log_file(args.file) ? lcm_series(args, read_options)
-                                                       : io::read_series(args.file, read_options);
+  read_options.threads = args.threads;
+  const bool lcm_log = is_lcm_log_file(args.file);
+  const io::Series series = lcm_log || io::is_binary_recording_file(args.file)
+                                ? recording_series(args, read_options, lcm_log)
+                                : io::read_series(args.file, read_options);
 
   // τ0: --tau0, else the median interval of the file's time column, else 1 s — and say which.
   double tau0_s = args.tau0_s;

@@ -243,7 +243,8 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   std::optional<LcmBus> bus;
   if (args.publish) bus.emplace(args.lcm_url);
 
-  const io::Recording recording = read_input_recording(args.file, config, args.lcm, bar.callback());
+  const io::Recording recording =
+      read_input_recording(args.file, config, args.lcm, bar.callback(), args.analysis.threads);
   times.mark("read");
   StageTimes channel_times;
   AnalysisResult result =

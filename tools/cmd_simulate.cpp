@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -25,6 +26,7 @@
 #include "common/number_text.h"
 #include "common/units.h"
 #include "io/atomic_output.h"
+#include "io/binary_recording.h"
 #include "io/lcm_log_writer.h"
 #include "io/noise_model_yaml.h"
 #include "io/simulation_model.h"
@@ -74,6 +76,90 @@ bool is_lcm_log_path(const std::string& path) {
   const std::string suffix = ".lcmlog";
   return path.size() > suffix.size() &&
          path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// An output path that asks for the binary recording format (io/binary_recording.h).
+bool is_binary_path(const std::string& path) {
+  const std::string_view suffix = io::kBinaryRecordingExtension;
+  return path.size() > suffix.size() &&
+         path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// The median of the intervals t[k+1] − t[k] of the stamps t[k] = k / rate (k < samples),
+/// computed as io::analyze_timing does (mean of the two middle values for an even count) from
+/// a histogram of the distinct intervals — a handful per binade of t — so that the header of a
+/// binary output holds the sample period a read of the CSV output finds.
+class IntervalMedian {
+ public:
+  void add(double interval) {
+    if (last_ < counts_.size() && counts_[last_].first == interval) {
+      ++counts_[last_].second;
+      return;
+    }
+    for (last_ = 0; last_ < counts_.size(); ++last_) {
+      if (counts_[last_].first == interval) {
+        ++counts_[last_].second;
+        return;
+      }
+    }
+    counts_.emplace_back(interval, 1);
+  }
+
+  /// The median, or nullopt without intervals.
+  std::optional<double> median() {
+    std::sort(counts_.begin(), counts_.end());
+    std::int64_t total = 0;
+    for (const auto& c : counts_) total += c.second;
+    if (total == 0) return std::nullopt;
+    const auto nth = [&](std::int64_t index) {
+      for (const auto& [value, count] : counts_) {
+        if (index < count) return value;
+        index -= count;
+      }
+      return counts_.back().first;
+    };
+    const double upper = nth(total / 2);
+    return total % 2 == 1 ? upper : 0.5 * (nth(total / 2 - 1) + upper);
+  }
+
+ private:
+  std::vector<std::pair<double, std::int64_t>> counts_;
+  std::size_t last_ = 0;
+};
+
+/// The sample period of a simulated recording as the CSV reader would find it from the time
+/// column (its median interval); 1 / rate for a single sample.
+double simulated_sample_period_s(double rate_hz, std::int64_t samples) {
+  IntervalMedian median;
+  double previous = 0.0;
+  for (std::int64_t k = 1; k < samples; ++k) {
+    const double t = static_cast<double>(k) / rate_hz;
+    median.add(t - previous);
+    previous = t;
+  }
+  return median.median().value_or(1.0 / rate_hz);
+}
+
+/// Header of a binary output: what converting the CSV output would give (columns named as the
+/// CSV's, SI source units), with the model as source.
+io::BinaryRecordingHeader binary_header(const SimulationSetup& setup, double rate_hz,
+                                        std::int64_t samples) {
+  io::BinaryRecordingHeader h;
+  h.source_path = setup.source;
+  h.created_by = std::string(io::kBinaryCreatedBy);
+  h.sample_period_s = simulated_sample_period_s(rate_hz, samples);
+  h.has_time = true;
+  h.sample_count = static_cast<std::uint64_t>(samples);
+  for (std::size_t c = 0; c < models::kImuChannels; ++c) {
+    const bool gyro = c < 3;
+    io::Channel channel;
+    channel.name = io::kImuChannelNames[c];
+    channel.unit = gyro ? "rad/s" : "m/s^2";
+    channel.source_column = channel.name + (gyro ? "_rad_per_s" : "_m_per_s2");
+    channel.source_unit = channel.unit;
+    h.channels.push_back(std::move(channel));
+  }
+  return h;
 }
 
 /// Writes the '#' header: source, seed, rate, and every non-zero term per channel (SI keys).
@@ -197,11 +283,20 @@ void run_simulate(const SimulateArgs& args, StageTimes& times) {
   models::ImuSimulator simulator(model, options);
   times.mark("setup");
 
-  // 2. Generate and write block by block: memory stays constant for any duration.
-  io::AtomicOutputFile file(args.output);
-  std::ostream& out = file.stream();
+  // 2. Generate and write block by block: memory stays constant for any duration. A binary
+  // output goes column by column through its own writer; CSV and LCM through a stream.
+  const bool binary = is_binary_path(args.output);
+  std::optional<io::BinaryRecordingWriter> binary_writer;
+  std::optional<io::AtomicOutputFile> file;
+  if (binary) {
+    binary_writer.emplace(args.output, binary_header(setup, rate_hz, samples));
+  } else {
+    file.emplace(args.output);
+  }
+  std::ostringstream no_stream;  // the binary writer has its own file
+  std::ostream& out = file ? file->stream() : no_stream;
   const bool lcm_log = is_lcm_log_path(args.output);
-  if (!lcm_log) write_header(out, setup, args, rate_hz, duration_s, samples, band);
+  if (!lcm_log && !binary) write_header(out, setup, args, rate_hz, duration_s, samples, band);
   io::LcmLogWriter log_writer(out);
   imunoise::imu_sample_t message{};
   std::vector<unsigned char> encoded(static_cast<std::size_t>(message.getEncodedSize()));
@@ -209,7 +304,8 @@ void run_simulate(const SimulateArgs& args, StageTimes& times) {
   constexpr std::size_t kBlock = 4096;
   constexpr std::size_t kMaxRowChars = 7 * 25;  // 7 fields, each ≤ 24 chars plus separator
   std::vector<double> values(models::kImuChannels * kBlock);
-  std::vector<char> text(kBlock * kMaxRowChars);
+  std::vector<char> text(binary ? 0 : kBlock * kMaxRowChars);
+  std::vector<double> block_time(binary ? kBlock : 0);
   std::array<std::span<double>, models::kImuChannels> spans;
   ProgressBar bar("simulate", progress_wanted(args.verbosity));
   for (std::int64_t done = 0; done < samples;) {
@@ -220,6 +316,16 @@ void run_simulate(const SimulateArgs& args, StageTimes& times) {
       spans[c] = std::span<double>(values).subspan(c * kBlock, n);
     }
     simulator.next_block(spans);
+    if (binary) {
+      std::span<double> time = std::span<double>(block_time).first(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        time[i] = static_cast<double>(done + static_cast<std::int64_t>(i)) / rate_hz;
+      }
+      binary_writer->append(0, time);
+      for (std::size_t c = 0; c < models::kImuChannels; ++c) binary_writer->append(1 + c, spans[c]);
+      done += static_cast<std::int64_t>(n);
+      continue;
+    }
     if (lcm_log) {
       // imu_sample_t in SI, stamped in whole µs from 0 (the same stamp as the log event).
       for (std::size_t i = 0; i < n; ++i) {
@@ -248,7 +354,8 @@ void run_simulate(const SimulateArgs& args, StageTimes& times) {
     out.write(text.data(), p - text.data());
     done += static_cast<std::int64_t>(n);
   }
-  file.commit();
+  if (binary_writer) binary_writer->commit();
+  if (file) file->commit();
   bar.finish();
   times.mark("generate and write");
   std::cout << "imunoise simulate: wrote " << samples << " samples ("
@@ -260,10 +367,10 @@ void run_simulate(const SimulateArgs& args, StageTimes& times) {
 
 void register_simulate_command(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "simulate",
-      "Simulate a stationary IMU recording (CSV, SI units) from a YAML noise model and/or "
-      "per-term flags. Deterministic for a seed.");
+  CLI::App* sub = app.add_subcommand("simulate",
+                                     "Simulate a stationary IMU recording (CSV, LCM log or .imnb "
+                                     "binary, SI units) from a YAML noise model and/or "
+                                     "per-term flags. Deterministic for a seed.");
   sub->add_option("model", args->model_path,
                   "YAML noise model (each key names its unit; see configs/demo_imu.yaml and "
                   "docs/simulation-model.md)")
@@ -274,8 +381,9 @@ void register_simulate_command(CLI::App& app) {
       ->check(number_check(true));
   sub->add_option("--seed", args->seed, "random seed (default 1)");
   sub->add_option("-o,--output", args->output,
-                  "output file: CSV, or an LCM log of imunoise.imu_sample_t when it ends in "
-                  ".lcmlog (as lcm-logger writes; replay with lcm-logplayer)")
+                  "output file: CSV; an LCM log of imunoise.imu_sample_t when it ends in "
+                  ".lcmlog (as lcm-logger writes; replay with lcm-logplayer); an imunoise binary "
+                  "recording when it ends in .imnb (docs/binary-format.md)")
       ->required();
   sub->add_option("--lcm-channel", args->lcm_channel, "channel of the samples in a .lcmlog output")
       ->capture_default_str();

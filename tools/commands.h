@@ -13,6 +13,7 @@ namespace imunoise::tools {
 void register_allan_command(CLI::App& app);       ///< imunoise allan
 void register_analyze_command(CLI::App& app);     ///< imunoise analyze (the whole job)
 void register_check_command(CLI::App& app);       ///< imunoise check (sampling report)
+void register_convert_command(CLI::App& app);     ///< imunoise convert (CSV/LCM/binary)
 void register_export_command(CLI::App& app);      ///< imunoise export (filter configs)
 void register_live_command(CLI::App& app);        ///< imunoise live (LCM node)
 void register_publish_command(CLI::App& app);     ///< imunoise publish (LCM)

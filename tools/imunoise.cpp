@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   imunoise::tools::register_allan_command(app);
   imunoise::tools::register_check_command(app);
   imunoise::tools::register_simulate_command(app);
+  imunoise::tools::register_convert_command(app);
   imunoise::tools::register_export_command(app);
   imunoise::tools::register_discretize_command(app);
   imunoise::tools::register_drift_command(app);

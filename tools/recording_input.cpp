@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "common/errors.h"
+#include "io/binary_recording.h"
 #include "io/csv_reader.h"
 #include "io/lcm_log.h"
 #include "io/lcm_type_definition.h"
@@ -94,6 +95,30 @@ void reject_table_flags(const std::string& path, const io::InputConfig& config, 
   }
 }
 
+/// Table-only flags mean nothing for a binary recording, whose header carries rate and units.
+void reject_flags_for_binary(const std::string& path, const io::InputConfig& config,
+                             const LcmInputFlags& lcm) {
+  const auto reject = [&](bool given, const char* flag) {
+    if (given) {
+      throw InputError(path + ": " + flag +
+                       " does not apply to an imunoise binary recording (the binary header "
+                       "carries rate and units)");
+    }
+  };
+  reject(!lcm.channel.empty(), "--channel");
+  reject(!lcm.type_path.empty(), "--lcm-type");
+  reject(!lcm.struct_name.empty(), "--lcm-struct");
+  reject(config.delimiter.has_value(), "--delimiter");
+  reject(config.rate_hz.has_value(), "--rate");
+  reject(!config.time_column.empty(), "--time-col");
+  reject(config.time_unit.has_value(), "--time-unit");
+  reject(!config.gyro_columns.empty(), "--gyro-cols");
+  reject(config.gyro_unit.has_value(), "--gyro-unit");
+  reject(!config.accel_columns.empty(), "--accel-cols");
+  reject(config.accel_unit.has_value(), "--accel-unit");
+  reject(!config.extra_columns.empty(), "extra_columns");
+}
+
 }  // namespace
 
 void add_lcm_input_options(CLI::App& cmd, LcmInputFlags& flags) {
@@ -121,14 +146,22 @@ bool is_lcm_log_file(const std::string& path) {
 }
 
 io::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
-                                   const LcmInputFlags& lcm, const ProgressCallback& progress) {
+                                   const LcmInputFlags& lcm, const ProgressCallback& progress,
+                                   unsigned threads) {
+  if (io::is_binary_recording_file(path)) {
+    reject_flags_for_binary(path, config, lcm);
+    io::BinaryReadOptions options;
+    options.gyro_full_scale_rad_per_s = config.gyro_full_scale_rad_per_s;
+    options.accel_full_scale_m_per_s2 = config.accel_full_scale_m_per_s2;
+    return io::read_binary_recording(path, options, progress);
+  }
   if (!is_lcm_log_file(path)) {
     if (!lcm.channel.empty() || !lcm.type_path.empty() || !lcm.struct_name.empty()) {
       throw InputError(path +
                        ": --channel, --lcm-type and --lcm-struct apply to LCM logs; this file "
                        "does not start with the LCM log sync word (read as CSV/TXT without them)");
     }
-    return io::read_recording(path, config, progress);
+    return io::read_recording(path, config, progress, threads);
   }
   const bool user_type = !lcm.type_path.empty();
   if (!lcm.struct_name.empty() && !user_type) {
