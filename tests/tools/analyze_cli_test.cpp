@@ -92,13 +92,13 @@ TEST(AnalyzeCli, ConstantChannelStopsWithAClearMessageAndNoOutput) {
 
 TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
   // --threads splits the axes, the τ passes of the deviations and the bootstrap replicates;
-  // every result must be the same bytes whatever the split (issue 8). 90 000 samples is above
+  // every result must be the same bytes whatever the split (issue 8). 60 000 samples is above
   // the size where the deviations themselves go parallel.
   const auto dir = make_temp_dir("analyze_threads");
   const auto rec = dir / "rec.csv";
   const auto model = std::filesystem::path(IMUNOISE_SOURCE_DIR) / "configs" / "reference-imu.yaml";
   const CommandResult sim = run_imunoise("simulate " + model.string() +
-                                         " --duration 30min --rate 50 --seed 8 -o " + rec.string());
+                                         " --duration 20min --rate 50 --seed 8 -o " + rec.string());
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const auto slurp = [](const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -107,7 +107,7 @@ TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
   std::string reference[3];
   for (const char* threads : {"1", "3", "2"}) {
     const auto out = dir / (std::string("out") + threads);
-    const CommandResult r = run_imunoise("analyze " + rec.string() + " --bootstrap 6 --threads " +
+    const CommandResult r = run_imunoise("analyze " + rec.string() + " --bootstrap 2 --threads " +
                                          threads + " -o " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     int k = 0;
