@@ -25,8 +25,9 @@ inline constexpr std::int64_t kDifferenceBlock = 2048;
 void overlapping_difference_sums(std::span<const double> x, int order,
                                  std::span<const std::int64_t> m_values, std::span<double> sums);
 
-/// Samples a difference of the shared pass may span (order·m): 256 KiB of float64, which
-/// stays in a core's L2 cache together with one block.
-inline constexpr std::int64_t kSharedPassSpan = 32768;
+/// Samples a difference of the shared pass may span (order·m): 768 KiB of float64, which
+/// stays in a core's L2 cache (1 MiB here) together with one block. Chosen by
+/// bench/deviation_bench.cpp: 256 KiB and 1 MiB spans were 10–30 % slower (bench/RESULTS.md).
+inline constexpr std::int64_t kSharedPassSpan = 98304;
 
 }  // namespace imunoise::analysis::detail

@@ -97,7 +97,7 @@ for c in "${CASES[@]}"; do
     file_bytes=$(stat -c %s "$input")
     read_s=$(stage "$out.log" read)
     stages="read $read_s ($(rate "$file_bytes" "$read_s") of $kind file)"
-    for s in deviations psd fit bootstrap; do
+    for s in deviations PSD fit bootstrap intervals; do
       v=$(stage "$out.log" "$s")
       [ "$v" = 0 ] || stages+=", $s $v ($(rate "$data_bytes" "$v") per thread)"
     done

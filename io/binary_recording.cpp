@@ -654,12 +654,14 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
   rec.report.timing = std::move(timing);
   rec.report.non_finite_dropped = h.non_finite_dropped;
   rec.report.rows_dropped = h.rows_dropped;
+  std::vector<ChannelSamples> checks;
   for (const Channel& ch : rec.channels) {
     ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
     if (ch.unit == "rad/s") samples.full_scale = options.gyro_full_scale_rad_per_s;
     if (ch.unit == "m/s^2") samples.full_scale = options.accel_full_scale_m_per_s2;
-    rec.report.channels.push_back(analyze_channel(samples, sampling));
+    checks.push_back(samples);
   }
+  rec.report.channels = analyze_channels(checks, sampling);
   return rec;
 }
 

@@ -1588,12 +1588,14 @@ Recording read_recording(const std::string& path, const InputConfig& config,
   rec.report.timing = timing;
   rec.report.non_finite_dropped = data.non_finite_dropped;
   rec.report.rows_dropped = data.rows_dropped;
+  std::vector<ChannelSamples> checks;
   for (const Channel& ch : rec.channels) {
     ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
     if (ch.unit == "rad/s") samples.full_scale = config.gyro_full_scale_rad_per_s;
     if (ch.unit == "m/s^2") samples.full_scale = config.accel_full_scale_m_per_s2;
-    rec.report.channels.push_back(analyze_channel(samples, options));
+    checks.push_back(samples);
   }
+  rec.report.channels = analyze_channels(checks, options);
   return rec;
 }
 

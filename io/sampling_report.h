@@ -113,6 +113,13 @@ TimingReport fixed_rate_timing(double rate_hz, std::int64_t samples);
 /// Range, saturation runs, full-scale excursions and quantization step of one channel.
 ChannelReport analyze_channel(const ChannelSamples& channel, const SamplingOptions& options = {});
 
+/// analyze_channel over CHANNELS, on up to THREADS threads (0 = all cores); results in order.
+/// The checks of one channel are independent of the others, so the result does not depend on
+/// the thread count.
+std::vector<ChannelReport> analyze_channels(std::span<const ChannelSamples> channels,
+                                            const SamplingOptions& options = {},
+                                            unsigned threads = 0);
+
 /// Smallest positive step q such that every difference between consecutive samples is an
 /// integer multiple of q (within 10 % of q), or empty when none is found, there are fewer than
 /// 8 non-zero steps, or the range would span more than 2^24 steps (not an ADC code grid).

@@ -304,9 +304,13 @@ GapPlan plan_gaps(const io::Recording& recording, const std::string& source,
 
 }  // namespace
 
-AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
-                                 const AnalysisSettings& settings,
-                                 const AnalysisFeedback& feedback) {
+namespace {
+
+/// analyze_recording; when RELEASE is given (it is RECORDING's time_s), the time stamps are
+/// freed as soon as the gaps are planned: nothing after the plan reads them.
+AnalysisResult analyze(const io::Recording& recording, const std::string& source,
+                       const AnalysisSettings& settings, const AnalysisFeedback& feedback,
+                       std::vector<double>* release) {
   const double tau0_s = recording.sample_period_s;
   // The readers guarantee a positive period; a Recording built by other code might not, and
   // τ0 = 0 would turn every τ and rate into 0 or Inf.
@@ -326,6 +330,7 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
   const pipeline::AxisAnalysisOptions options = axis_options(settings, tau0_s);
   const GapPlan gap_plan = plan_gaps(recording, source, pipeline::parse_gap_policy(settings.gaps),
                                      settings.bootstrap >= 2);
+  if (release != nullptr) std::vector<double>().swap(*release);
   // The samples each channel is analysed on: the recording, its gap-free pieces, or a copy
   // with the gaps filled (kept alive here for the spans).
   std::vector<std::vector<double>> filled(channels.size());
@@ -400,6 +405,21 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
     result.axes.push_back(std::move(*r));
   }
   return result;
+}
+
+}  // namespace
+
+AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
+                                 const AnalysisSettings& settings,
+                                 const AnalysisFeedback& feedback) {
+  return analyze(recording, source, settings, feedback, nullptr);
+}
+
+AnalysisResult analyze_recording_freeing_time_stamps(io::Recording& recording,
+                                                     const std::string& source,
+                                                     const AnalysisSettings& settings,
+                                                     const AnalysisFeedback& feedback) {
+  return analyze(recording, source, settings, feedback, &recording.time_s);
 }
 
 }  // namespace imunoise::tools

@@ -67,6 +67,14 @@ AnalysisResult analyze_recording(const io::Recording& recording, const std::stri
                                  const AnalysisSettings& settings,
                                  const AnalysisFeedback& feedback = {});
 
+/// analyze_recording for a caller that needs no time stamps afterwards: RECORDING.time_s is
+/// freed (left empty) as soon as the gaps are planned, which lowers the peak memory by one
+/// column (0.7 GB for 24 h at 1 kHz). Everything else in RECORDING is unchanged.
+AnalysisResult analyze_recording_freeing_time_stamps(io::Recording& recording,
+                                                     const std::string& source,
+                                                     const AnalysisSettings& settings,
+                                                     const AnalysisFeedback& feedback = {});
+
 /// Data-quality findings of a sampling report, one line each (empty = nothing to say).
 std::vector<std::string> quality_findings(const io::SamplingReport& report);
 

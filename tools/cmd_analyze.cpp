@@ -243,13 +243,13 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   std::optional<LcmBus> bus;
   if (args.publish) bus.emplace(args.lcm_url);
 
-  const io::Recording recording =
+  io::Recording recording =
       read_input_recording(args.file, config, args.lcm, bar.callback(), args.analysis.threads);
   times.mark("read");
   StageTimes channel_times;
-  AnalysisResult result =
-      analyze_recording(recording, args.file, args.analysis,
-                        {&bar, args.verbosity.verbose ? &channel_times : nullptr});
+  AnalysisResult result = analyze_recording_freeing_time_stamps(
+      recording, args.file, args.analysis,
+      {&bar, args.verbosity.verbose ? &channel_times : nullptr});
   bar.finish();  // before anything else is written: the next output starts on a clean line
   times.mark("analysis");
   print_detail(args.verbosity, "analyze",

@@ -193,12 +193,12 @@ TEST(Deviation, ResultsDoNotDependOnThreadCount) {
 
 TEST(Deviation, SharedPassesGiveEachFactorItsOwnSumAtAnyThreadCount) {
   // OADEV/OHDEV curves share cache-resident passes among the small factors (order·m up to
-  // 32768 samples) and give each larger factor its own pass. Every point must equal the
-  // single-factor estimator bit for bit, agree with a long-double reference, and not depend
-  // on how many threads split the factors. The grid straddles the shared-span boundary.
+  // kSharedPassSpan = 98304 samples) and give each larger factor its own pass. Every point must
+  // equal the single-factor estimator bit for bit, agree with a long-double reference, and not
+  // depend on how many threads split the factors. The factors straddle the boundary of both orders.
   const auto phase = phase_from_rate(white_noise(150'000, 1.0, 5), 1.0);
-  const std::vector<std::int64_t> factors = {1,     2,     3,     7,     64,    1000,  5461,
-                                             10922, 10923, 16383, 16384, 16385, 20000, 49999};
+  const std::vector<std::int64_t> factors = {1,     2,     3,     7,     64,    1000,
+                                             32767, 32768, 32769, 49151, 49152, 49153};
   for (auto type : {DeviationType::oadev, DeviationType::ohdev}) {
     const std::int64_t max_m = max_averaging_factor(type, static_cast<std::int64_t>(phase.size()));
     std::vector<std::int64_t> usable;
