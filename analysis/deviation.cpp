@@ -1,11 +1,8 @@
 #include "analysis/deviation.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "analysis/confidence.h"
@@ -17,6 +14,7 @@
 #include "analysis/tau_grid.h"
 #include "analysis/total_family.h"
 #include "common/errors.h"
+#include "common/parallel_for.h"
 
 namespace imunoise::analysis {
 
@@ -226,34 +224,6 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
 
 namespace {
 
-/// Runs work(i) for i = 0..count−1 on up to THREADS threads (the caller's included), each item
-/// exactly once; the first exception is rethrown after all threads stopped.
-template <class Work>
-void parallel_for(std::size_t count, unsigned threads, Work&& work) {
-  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
-  if (threads <= 1) {
-    for (std::size_t i = 0; i < count; ++i) work(i);
-    return;
-  }
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < count && !failed; i = next++) {
-      try {
-        work(i);
-      } catch (...) {
-        if (!failed.exchange(true)) failure = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
 /// The variance of one curve point: the plain estimator, or for MTOTDEV, TTOTDEV, HTOTDEV and
 /// Thêo1 with options.bias_corrected, the SP 1065 bias-corrected one for noise type ALPHA.
 VarianceEstimate point_variance(const DeviationOptions& options, std::span<const double> phase,
@@ -295,7 +265,7 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
   // Every τ costs an O(M) pass, so the work is split over threads; each result is written by
   // exactly one work item and computed the same way whoever runs it, so results do not
   // depend on the thread count.
-  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  unsigned threads = resolve_threads(options.threads);
   threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
   if (curve.n_phase < 50000) threads = 1;  // thread start-up would dominate
 

@@ -65,7 +65,7 @@ rate() {  # BYTES SECONDS -> "X MB/s" (decimal MB)
 
 echo "machine: $(nproc) cores,$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2), $(awk '/MemTotal/ { printf "%.0f GB", $2 / 1048576 }' /proc/meminfo) RAM; $("$BIN" --version 2>/dev/null | head -1)"
 echo
-echo "| case | command | wall s | CPU s | peak RSS MB | RSS / data | stages (wall s, throughput of the float64 data) |"
+echo "| case | command | wall s | CPU s | peak RSS MiB | RSS / data | stages (wall s, throughput of the float64 data) |"
 echo "|---|---|---|---|---|---|---|"
 for c in "${CASES[@]}"; do
   duration=${c%@*}

@@ -654,14 +654,8 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
   rec.report.timing = std::move(timing);
   rec.report.non_finite_dropped = h.non_finite_dropped;
   rec.report.rows_dropped = h.rows_dropped;
-  std::vector<ChannelSamples> checks;
-  for (const Channel& ch : rec.channels) {
-    ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
-    if (ch.unit == "rad/s") samples.full_scale = options.gyro_full_scale_rad_per_s;
-    if (ch.unit == "m/s^2") samples.full_scale = options.accel_full_scale_m_per_s2;
-    checks.push_back(samples);
-  }
-  rec.report.channels = analyze_channels(checks, sampling);
+  rec.report.channels = check_channels(rec.channels, options.gyro_full_scale_rad_per_s,
+                                       options.accel_full_scale_m_per_s2, sampling);
   return rec;
 }
 

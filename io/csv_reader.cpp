@@ -18,12 +18,11 @@
 #include <cstring>
 #include <exception>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 #include <system_error>
-#include <thread>
 
 #include "common/errors.h"
+#include "common/parallel_for.h"
 
 namespace imunoise::io {
 
@@ -57,6 +56,19 @@ std::string show(std::string_view text) {
 }
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+/// The field of a SEP-delimited line that starts at P: [B, E) with blanks trimmed. Returns the
+/// separator that ends it, or nullptr when it runs to END.
+inline const char* delimited_field(const char* p, const char* end, char sep, const char*& b,
+                                   const char*& e) {
+  const char* d = static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
+  const char* fe = d != nullptr ? d : end;
+  b = p;
+  while (b != fe && is_blank(*b)) ++b;
+  e = fe;
+  while (e != b && is_blank(e[-1])) --e;
+  return d;
+}
 
 /// Reads a file in large blocks and hands out lines as views into its buffer (valid until the
 /// next call). Strips "\n", "\r\n" and a UTF-8 BOM on line 1; a last line without a newline is
@@ -222,13 +234,9 @@ inline std::size_t for_each_field(std::string_view line, Delimiter delimiter, On
   }
   const char sep = delimiter_char(delimiter);
   for (;;) {
-    const char* d =
-        static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
-    const char* fe = d != nullptr ? d : end;
-    const char* b = p;
-    while (b != fe && is_blank(*b)) ++b;
-    const char* e = fe;
-    while (e != b && is_blank(e[-1])) --e;
+    const char* b;
+    const char* e;
+    const char* d = delimited_field(p, end, sep, b, e);
     on_field(index++, b, e);
     if (d == nullptr) return index;
     p = d + 1;
@@ -674,13 +682,9 @@ inline bool parse_row(const ReadPlan& plan, std::string_view line, RowValues& ro
         ++p;  // past the separator
         continue;
       }
-      const char* d =
-          static_cast<const char*>(std::memchr(p, sep, static_cast<std::size_t>(end - p)));
-      const char* fe = d != nullptr ? d : end;
-      const char* b = p;
-      while (b != fe && is_blank(*b)) ++b;
-      const char* e = fe;
-      while (e != b && is_blank(e[-1])) --e;
+      const char* b;
+      const char* e;
+      const char* d = delimited_field(p, end, sep, b, e);
       if (count < ncols) {
         if (!convert_field(plan, count, begin, b, e, row, error)) return false;
       } else if (count == ncols) {
@@ -784,40 +788,6 @@ struct Chunk {
   std::vector<LineRun> runs;
   RowError error;  // the chunk's first refused line (problem kNone: none)
 };
-
-/// Runs WORK(i) for i in [0, count) on up to THREADS threads, the caller included; the
-/// caller calls AFTER_OWN() after each of its items (so progress is reported from the calling
-/// thread only). Items are handed out in increasing order. The first exception is rethrown.
-template <typename Work, typename AfterOwn>
-void run_in_parallel(std::size_t count, unsigned threads, Work&& work, AfterOwn&& after_own) {
-  std::atomic<std::size_t> next{0};
-  std::mutex error_mutex;
-  std::exception_ptr error;
-  const auto loop = [&](bool caller) {
-    try {
-      for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) {
-        work(i);
-        if (caller) after_own();
-      }
-    } catch (...) {
-      const std::lock_guard lock(error_mutex);
-      if (!error) error = std::current_exception();
-      next.store(count);
-    }
-  };
-  std::vector<std::thread> pool;
-  const std::size_t helpers = std::min<std::size_t>(threads, count) - (count > 0 ? 1 : 0);
-  for (std::size_t t = 0; t < helpers; ++t) {
-    try {
-      pool.emplace_back(loop, false);
-    } catch (const std::system_error&) {
-      break;  // no more threads: the ones running share the remaining items
-    }
-  }
-  loop(true);
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-}
 
 /// Counts '\n' in [b, e), 8 bytes per step: a byte of x = word ^ "\n\n…" is zero exactly when
 /// bit 7 of ((x & 0x7F…) + 0x7F…) | x is clear (no carry crosses a byte: each lane is ≤ 0xFE).
@@ -1114,7 +1084,7 @@ struct TableReader::Impl {
 
     // Pass 1: lines per chunk (a final line without a newline counts too).
     const auto nothing = [] {};
-    run_in_parallel(
+    parallel_for(
         chunks.size(), threads,
         [&](std::size_t i) {
           Chunk& c = chunks[i];
@@ -1148,7 +1118,7 @@ struct TableReader::Impl {
     const auto total = static_cast<std::int64_t>(text.size());
     std::atomic<std::int64_t> done{static_cast<std::int64_t>(region - text.begin())};
     std::atomic<std::size_t> first_failed{chunks.size()};
-    run_in_parallel(
+    parallel_for(
         chunks.size(), threads,
         [&](std::size_t i) {
           Chunk& c = chunks[i];
@@ -1272,8 +1242,7 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
                            mapped.map(im.source.fd());
   std::int64_t kept = 0;
   if (use_mapping) {
-    unsigned threads = parallelism.threads;
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = resolve_threads(parallelism.threads);
     kept = im.read_mapped(mapped, plan, rows, origin, threads, parallelism.chunk_bytes, progress,
                           values, data);
   } else {
@@ -1588,14 +1557,8 @@ Recording read_recording(const std::string& path, const InputConfig& config,
   rec.report.timing = timing;
   rec.report.non_finite_dropped = data.non_finite_dropped;
   rec.report.rows_dropped = data.rows_dropped;
-  std::vector<ChannelSamples> checks;
-  for (const Channel& ch : rec.channels) {
-    ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
-    if (ch.unit == "rad/s") samples.full_scale = config.gyro_full_scale_rad_per_s;
-    if (ch.unit == "m/s^2") samples.full_scale = config.accel_full_scale_m_per_s2;
-    checks.push_back(samples);
-  }
-  rec.report.channels = analyze_channels(checks, options);
+  rec.report.channels = check_channels(rec.channels, config.gyro_full_scale_rad_per_s,
+                                       config.accel_full_scale_m_per_s2, options);
   return rec;
 }
 

@@ -77,10 +77,7 @@ Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string
   rec.report.timing = timing;
   rec.report.non_finite_dropped = samples.non_finite_dropped;
   rec.report.rows_dropped = samples.rows_dropped;
-  std::vector<ChannelSamples> checks;
-  for (const Channel& ch : rec.channels)
-    checks.push_back({ch.name, ch.unit, ch.values, std::nullopt});
-  rec.report.channels = analyze_channels(checks, sampling);
+  rec.report.channels = check_channels(rec.channels, std::nullopt, std::nullopt, sampling);
   return rec;
 }
 

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +53,23 @@ struct Recording {
     return nullptr;
   }
 };
+
+/// The sampling report's checks of every channel (analyze_channels), the gyro channels (rad/s)
+/// against GYRO_FULL_SCALE and the accelerometer channels (m/s^2) against ACCEL_FULL_SCALE —
+/// what every reader puts in Recording::report.channels.
+inline std::vector<ChannelReport> check_channels(const std::vector<Channel>& channels,
+                                                 std::optional<double> gyro_full_scale_rad_per_s,
+                                                 std::optional<double> accel_full_scale_m_per_s2,
+                                                 const SamplingOptions& options) {
+  std::vector<ChannelSamples> checks;
+  for (const Channel& ch : channels) {
+    ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
+    if (ch.unit == "rad/s") samples.full_scale = gyro_full_scale_rad_per_s;
+    if (ch.unit == "m/s^2") samples.full_scale = accel_full_scale_m_per_s2;
+    checks.push_back(samples);
+  }
+  return analyze_channels(checks, options);
+}
 
 /// Throws InputError "PATH: too few samples: N (need at least MIN for PURPOSE)" when
 /// `count < min_samples`.

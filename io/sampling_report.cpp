@@ -1,16 +1,14 @@
 #include "io/sampling_report.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cinttypes>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <exception>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <thread>
 
+#include "common/parallel_for.h"
 #include "common/sampling_gap.h"
 #include "common/units.h"
 
@@ -158,26 +156,8 @@ TimingReport fixed_rate_timing(double rate_hz, std::int64_t samples) {
 std::vector<ChannelReport> analyze_channels(std::span<const ChannelSamples> channels,
                                             const SamplingOptions& options, unsigned threads) {
   std::vector<ChannelReport> reports(channels.size());
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(channels.size()));
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(channels.size());
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < channels.size(); i = next++) {
-      try {
-        reports[i] = analyze_channel(channels[i], options);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  parallel_for(channels.size(), threads,
+               [&](std::size_t i) { reports[i] = analyze_channel(channels[i], options); });
   return reports;
 }
 

@@ -60,6 +60,15 @@ CommandResult run_imunoise(const std::string& args) {
   return result;
 }
 
+std::string read_file_bytes(const std::filesystem::path& path) { return slurp(path); }
+
+std::string quoted_for_shell(const std::filesystem::path& path) {
+  // Built with append: GCC 12 warns falsely (-Wrestrict) on "'" + a temporary string.
+  std::string text = "'";
+  text.append(path.string()).append("'");
+  return text;
+}
+
 std::vector<double> read_number_lines(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read " + path.string());

@@ -44,6 +44,12 @@ struct CommandResult {
 /// Runs the imunoise binary with ARGS (a shell-quoted string), capturing both streams.
 CommandResult run_imunoise(const std::string& args);
 
+/// The whole file at PATH, byte for byte ("" when it cannot be read).
+std::string read_file_bytes(const std::filesystem::path& path);
+
+/// 'PATH' for a POSIX shell command line (paths here never hold a single quote).
+std::string quoted_for_shell(const std::filesystem::path& path);
+
 /// Reads a one-number-per-line file, skipping '#' comment and blank lines (test-side reader,
 /// independent of io/ so analysis tests do not depend on the production parser).
 std::vector<double> read_number_lines(const std::filesystem::path& path);

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <array>
 #include <fstream>
+#include <vector>
 
 #include "common/errors.h"
 #include "io/binary_recording.h"
@@ -74,49 +75,49 @@ io::LcmUserType user_type_of(const LcmInputFlags& lcm, const io::InputConfig& co
   return t;
 }
 
-/// Table-only flags that mean nothing for an LCM log of imu_sample_t.
-void reject_table_flags(const std::string& path, const io::InputConfig& config, bool user_type) {
-  const auto reject = [&](bool given, const char* flag) {
-    if (given) {
-      throw InputError(path + ": " + flag + " applies to CSV/TXT tables; this file is an LCM log" +
-                       (user_type ? "" : " (imu_sample_t fields are SI by definition)"));
-    }
+/// The CSV/TXT-only flags given in CONFIG, in the order they are checked: --delimiter, --rate,
+/// extra_columns, then (with COLUMN_FLAGS) the column and unit flags.
+std::vector<const char*> table_flags_given(const io::InputConfig& config, bool column_flags) {
+  std::vector<const char*> given;
+  const auto check = [&](bool is_given, const char* flag) {
+    if (is_given) given.push_back(flag);
   };
-  reject(config.delimiter.has_value(), "--delimiter");
-  reject(config.rate_hz.has_value(), "--rate");
-  reject(!config.extra_columns.empty(), "extra_columns");
-  if (!user_type) {
-    reject(!config.time_column.empty(), "--time-col");
-    reject(config.time_unit.has_value(), "--time-unit");
-    reject(!config.gyro_columns.empty(), "--gyro-cols");
-    reject(config.gyro_unit.has_value(), "--gyro-unit");
-    reject(!config.accel_columns.empty(), "--accel-cols");
-    reject(config.accel_unit.has_value(), "--accel-unit");
+  check(config.delimiter.has_value(), "--delimiter");
+  check(config.rate_hz.has_value(), "--rate");
+  check(!config.extra_columns.empty(), "extra_columns");
+  if (column_flags) {
+    check(!config.time_column.empty(), "--time-col");
+    check(config.time_unit.has_value(), "--time-unit");
+    check(!config.gyro_columns.empty(), "--gyro-cols");
+    check(config.gyro_unit.has_value(), "--gyro-unit");
+    check(!config.accel_columns.empty(), "--accel-cols");
+    check(config.accel_unit.has_value(), "--accel-unit");
   }
+  return given;
 }
 
-/// Table-only flags mean nothing for a binary recording, whose header carries rate and units.
+/// Table-only flags that mean nothing for an LCM log of imu_sample_t (with --lcm-type, the
+/// column and unit flags name the user's fields and are allowed).
+void reject_table_flags(const std::string& path, const io::InputConfig& config, bool user_type) {
+  const std::vector<const char*> given = table_flags_given(config, !user_type);
+  if (given.empty()) return;
+  throw InputError(path + ": " + given.front() +
+                   " applies to CSV/TXT tables; this file is an LCM log" +
+                   (user_type ? "" : " (imu_sample_t fields are SI by definition)"));
+}
+
+/// Table and LCM flags mean nothing for a binary recording, whose header carries rate and units.
 void reject_flags_for_binary(const std::string& path, const io::InputConfig& config,
                              const LcmInputFlags& lcm) {
-  const auto reject = [&](bool given, const char* flag) {
-    if (given) {
-      throw InputError(path + ": " + flag +
-                       " does not apply to an imunoise binary recording (the binary header "
-                       "carries rate and units)");
-    }
-  };
-  reject(!lcm.channel.empty(), "--channel");
-  reject(!lcm.type_path.empty(), "--lcm-type");
-  reject(!lcm.struct_name.empty(), "--lcm-struct");
-  reject(config.delimiter.has_value(), "--delimiter");
-  reject(config.rate_hz.has_value(), "--rate");
-  reject(!config.time_column.empty(), "--time-col");
-  reject(config.time_unit.has_value(), "--time-unit");
-  reject(!config.gyro_columns.empty(), "--gyro-cols");
-  reject(config.gyro_unit.has_value(), "--gyro-unit");
-  reject(!config.accel_columns.empty(), "--accel-cols");
-  reject(config.accel_unit.has_value(), "--accel-unit");
-  reject(!config.extra_columns.empty(), "extra_columns");
+  std::vector<const char*> given;
+  if (!lcm.channel.empty()) given.push_back("--channel");
+  if (!lcm.type_path.empty()) given.push_back("--lcm-type");
+  if (!lcm.struct_name.empty()) given.push_back("--lcm-struct");
+  for (const char* flag : table_flags_given(config, true)) given.push_back(flag);
+  if (given.empty()) return;
+  throw InputError(path + ": " + given.front() +
+                   " does not apply to an imunoise binary recording (the binary header carries "
+                   "rate and units)");
 }
 
 }  // namespace

@@ -27,14 +27,8 @@ namespace imunoise::io {
 namespace {
 
 using test::error_of;
+using test::read_file_bytes;
 using ::testing::HasSubstr;
-
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -216,7 +210,7 @@ TEST(BinaryRecording, WrittenBytesFollowTheDocumentedLayout) {
   const auto path = test::make_temp_dir("binrec-layout") / "rec.imnb";
   const Recording rec = awkward_recording(5);
   write_binary_recording(path.string(), rec);
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = read_file_bytes(path);
   ASSERT_GE(bytes.size(), 24U);
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x89IMNB\r\n\x1a", 8));
   EXPECT_EQ(get<std::uint32_t>(bytes, 8), 1U);

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 #include "common/units.h"
@@ -100,10 +99,6 @@ TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
   const CommandResult sim = run_imunoise("simulate " + model.string() +
                                          " --duration 20min --rate 50 --seed 8 -o " + rec.string());
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
-  const auto slurp = [](const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
   std::string reference[3];
   for (const char* threads : {"1", "3", "2"}) {
     const auto out = dir / (std::string("out") + threads);
@@ -112,7 +107,7 @@ TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     int k = 0;
     for (const char* name : {"model.yaml", "allan.csv", "psd.csv"}) {
-      const std::string text = slurp(out / name);
+      const std::string text = read_file_bytes(out / name);
       ASSERT_FALSE(text.empty()) << name;
       if (reference[k].empty()) {
         reference[k] = text;

@@ -10,7 +10,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,21 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-/// 'PATH' for the shell (built with append: GCC 12 raises a false -Wrestrict /
-/// -Wstringop-overflow on "'" + a temporary string).
-std::string quoted(const fs::path& p) {
-  std::string text = "'";
-  text.append(p.string()).append("'");
-  return text;
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// TEXT with every occurrence of FROM replaced by TO.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
@@ -51,7 +35,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 /// The data section of a binary recording (from the first 64-aligned offset after the JSON
 /// header, per docs/binary-format.md; read here without io/).
 std::string data_section(const fs::path& path) {
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = read_file_bytes(path);
   if (bytes.size() < 24) return {};
   std::uint64_t json = 0;
   std::memcpy(&json, bytes.data() + 16, 8);
@@ -83,14 +67,15 @@ class ConvertCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new fs::path(make_temp_dir("convert_cli"));
-    const std::string model = quoted(fs::path(IMUNOISE_SOURCE_DIR) / "configs/reference-imu.yaml");
+    const std::string model =
+        quoted_for_shell(fs::path(IMUNOISE_SOURCE_DIR) / "configs/reference-imu.yaml");
     for (const char* name : {"rec.csv", "sim.imnb"}) {
       const auto r = run_imunoise("simulate " + model + " --duration 60s --rate 100 --seed 5 -o " +
-                                  quoted(*dir_ / name));
+                                  quoted_for_shell(*dir_ / name));
       ASSERT_EQ(r.exit_code, 0) << r.err;
     }
-    const auto r = run_imunoise("convert " + quoted(*dir_ / "rec.csv") + " -q -o " +
-                                quoted(*dir_ / "conv.imnb"));
+    const auto r = run_imunoise("convert " + quoted_for_shell(*dir_ / "rec.csv") + " -q -o " +
+                                quoted_for_shell(*dir_ / "conv.imnb"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_THAT(r.out, HasSubstr("wrote 6000 samples"));
   }
@@ -104,35 +89,35 @@ class ConvertCli : public ::testing::Test {
 
 TEST_F(ConvertCli, AnalyzeOnBinaryGivesTheCsvResultsByteForByte) {
   for (const char* input : {"rec.csv", "conv.imnb"}) {
-    const auto r = run_imunoise("analyze " + quoted(dir() / input) + kAnalysisFlags + " -o " +
-                                quoted(dir() / (std::string("a_") + input)));
+    const auto r = run_imunoise("analyze " + quoted_for_shell(dir() / input) + kAnalysisFlags +
+                                " -o " + quoted_for_shell(dir() / (std::string("a_") + input)));
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const fs::path csv = dir() / "a_rec.csv";
   const fs::path bin = dir() / "a_conv.imnb";
   // model.yaml names its source (path and file name); everything else must be the same bytes.
-  std::string model_bin = read_bytes(bin / "model.yaml");
+  std::string model_bin = read_file_bytes(bin / "model.yaml");
   model_bin = replaced(model_bin, (dir() / "conv.imnb").string(), (dir() / "rec.csv").string());
   model_bin = replaced(model_bin, "conv.imnb", "rec.csv");
-  const std::string model_csv = read_bytes(csv / "model.yaml");
+  const std::string model_csv = read_file_bytes(csv / "model.yaml");
   ASSERT_FALSE(model_csv.empty());
   EXPECT_EQ(model_bin, model_csv);
-  const std::string allan_csv = read_bytes(csv / "allan.csv");
+  const std::string allan_csv = read_file_bytes(csv / "allan.csv");
   ASSERT_FALSE(allan_csv.empty());
-  EXPECT_EQ(read_bytes(bin / "allan.csv"), allan_csv);
-  EXPECT_EQ(read_bytes(bin / "psd.csv"), read_bytes(csv / "psd.csv"));
+  EXPECT_EQ(read_file_bytes(bin / "allan.csv"), allan_csv);
+  EXPECT_EQ(read_file_bytes(bin / "psd.csv"), read_file_bytes(csv / "psd.csv"));
 }
 
 TEST_F(ConvertCli, BinaryToCsvToBinaryKeepsEveryByteOfData) {
-  const auto r1 = run_imunoise("convert " + quoted(dir() / "conv.imnb") + " -q -o " +
-                               quoted(dir() / "back.csv"));
+  const auto r1 = run_imunoise("convert " + quoted_for_shell(dir() / "conv.imnb") + " -q -o " +
+                               quoted_for_shell(dir() / "back.csv"));
   ASSERT_EQ(r1.exit_code, 0) << r1.err;
   // The same columns and numbers as simulate's own CSV (shortest round-trip text).
   const auto back_lines = data_lines(dir() / "back.csv");
   ASSERT_EQ(back_lines.size(), 6001U);
   EXPECT_EQ(back_lines, data_lines(dir() / "rec.csv"));
-  const auto r2 = run_imunoise("convert " + quoted(dir() / "back.csv") + " -q -o " +
-                               quoted(dir() / "back.imnb"));
+  const auto r2 = run_imunoise("convert " + quoted_for_shell(dir() / "back.csv") + " -q -o " +
+                               quoted_for_shell(dir() / "back.imnb"));
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   const std::string data = data_section(dir() / "conv.imnb");
   EXPECT_EQ(data.size(), 7U * 48000U);  // 6000 × 8 bytes is a multiple of 64
@@ -164,10 +149,10 @@ TEST_F(ConvertCli, SimulateBinaryEqualsTheConvertedCsv) {
 
 TEST_F(ConvertCli, CsvToLcmLogReadsBackTheSameSamples) {
   const fs::path log = dir() / "rec.lcmlog";
-  const auto r = run_imunoise("convert " + quoted(dir() / "rec.csv") + " -q -o " + quoted(log) +
-                              " --lcm-channel IMU_A");
+  const auto r = run_imunoise("convert " + quoted_for_shell(dir() / "rec.csv") + " -q -o " +
+                              quoted_for_shell(log) + " --lcm-channel IMU_A");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto check = run_imunoise("check " + quoted(log) + " --json");
+  const auto check = run_imunoise("check " + quoted_for_shell(log) + " --json");
   ASSERT_EQ(check.exit_code, 0) << check.err;
   EXPECT_THAT(check.out, HasSubstr("\"samples\": 6000"));
   const io::Recording from_log = io::read_lcm_imu_log(log.string(), "IMU_A");
@@ -181,8 +166,8 @@ TEST_F(ConvertCli, CsvToLcmLogReadsBackTheSameSamples) {
 }
 
 TEST_F(ConvertCli, BinaryInputWorksForCheckAndDrift) {
-  const auto check_bin = run_imunoise("check " + quoted(dir() / "conv.imnb"));
-  const auto check_csv = run_imunoise("check " + quoted(dir() / "rec.csv"));
+  const auto check_bin = run_imunoise("check " + quoted_for_shell(dir() / "conv.imnb"));
+  const auto check_csv = run_imunoise("check " + quoted_for_shell(dir() / "rec.csv"));
   ASSERT_EQ(check_bin.exit_code, 0) << check_bin.err;
   ASSERT_EQ(check_csv.exit_code, 0) << check_csv.err;
   EXPECT_EQ(replaced(check_bin.out, (dir() / "conv.imnb").string(), (dir() / "rec.csv").string()),
@@ -196,8 +181,8 @@ TEST_F(ConvertCli, FixedRateCsvWithAnExtraColumnKeepsItInBinary) {
   write_text(config,
              "rate_hz: 3\ngyro:\n  columns: [gx, gy, gz]\nextra_columns:\n  temperature: temp\n");
   const fs::path bin = dir() / "fixed.imnb";
-  const auto r = run_imunoise("convert " + quoted(csv) + " --config " + quoted(config) + " -q -o " +
-                              quoted(bin));
+  const auto r = run_imunoise("convert " + quoted_for_shell(csv) + " --config " +
+                              quoted_for_shell(config) + " -q -o " + quoted_for_shell(bin));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::Recording rec = io::read_binary_recording(bin.string());
   ASSERT_EQ(rec.channels.size(), 4U);
@@ -206,8 +191,8 @@ TEST_F(ConvertCli, FixedRateCsvWithAnExtraColumnKeepsItInBinary) {
   EXPECT_TRUE(rec.time_s.empty());
   EXPECT_EQ(rec.report.timing.rate_hz, 3.0);
   // To CSV: time_s = k / 3 and the extra column kept by name.
-  const auto r2 =
-      run_imunoise("convert " + quoted(bin) + " -q --to csv -o " + quoted(dir() / "fixed.out"));
+  const auto r2 = run_imunoise("convert " + quoted_for_shell(bin) + " -q --to csv -o " +
+                               quoted_for_shell(dir() / "fixed.out"));
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   const auto lines = data_lines(dir() / "fixed.out");
   ASSERT_EQ(lines.size(), 4U);
@@ -222,26 +207,26 @@ constexpr const char* kGyroOnlyCsv =
 TEST(ConvertCliErrors, UnknownExtensionExits2WithoutOutput) {
   const fs::path dir = make_temp_dir("convert_err");
   write_text(dir / "rec.csv", kGyroOnlyCsv);
-  const auto r =
-      run_imunoise("convert " + quoted(dir / "rec.csv") + " -o " + quoted(dir / "x.dat"));
+  const auto r = run_imunoise("convert " + quoted_for_shell(dir / "rec.csv") + " -o " +
+                              quoted_for_shell(dir / "x.dat"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("cannot tell the output format"));
   EXPECT_THAT(r.err, HasSubstr("--to csv|binary|lcm"));
   EXPECT_FALSE(fs::exists(dir / "x.dat"));
-  const auto ok = run_imunoise("convert " + quoted(dir / "rec.csv") + " -q --to binary -o " +
-                               quoted(dir / "x.dat"));
+  const auto ok = run_imunoise("convert " + quoted_for_shell(dir / "rec.csv") +
+                               " -q --to binary -o " + quoted_for_shell(dir / "x.dat"));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_TRUE(io::is_binary_recording_file((dir / "x.dat").string()));
-  const auto bad_to = run_imunoise("convert " + quoted(dir / "rec.csv") + " --to parquet -o " +
-                                   quoted(dir / "y.csv"));
+  const auto bad_to = run_imunoise("convert " + quoted_for_shell(dir / "rec.csv") +
+                                   " --to parquet -o " + quoted_for_shell(dir / "y.csv"));
   EXPECT_EQ(bad_to.exit_code, 2);
   EXPECT_THAT(bad_to.err, HasSubstr("--to 'parquet'"));
 }
 
 TEST(ConvertCliErrors, MissingInputExits2) {
   const fs::path dir = make_temp_dir("convert_missing");
-  const auto r =
-      run_imunoise("convert " + quoted(dir / "none.csv") + " -o " + quoted(dir / "out.imnb"));
+  const auto r = run_imunoise("convert " + quoted_for_shell(dir / "none.csv") + " -o " +
+                              quoted_for_shell(dir / "out.imnb"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("none.csv"));
   EXPECT_FALSE(fs::exists(dir / "out.imnb"));
@@ -250,8 +235,8 @@ TEST(ConvertCliErrors, MissingInputExits2) {
 TEST(ConvertCliErrors, LcmOutputNeedsTheSixImuChannels) {
   const fs::path dir = make_temp_dir("convert_lcm6");
   write_text(dir / "rec.csv", kGyroOnlyCsv);
-  const auto r =
-      run_imunoise("convert " + quoted(dir / "rec.csv") + " -o " + quoted(dir / "o.lcm"));
+  const auto r = run_imunoise("convert " + quoted_for_shell(dir / "rec.csv") + " -o " +
+                              quoted_for_shell(dir / "o.lcm"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("missing: accel_x, accel_y, accel_z"));
   EXPECT_FALSE(fs::exists(dir / "o.lcm"));
@@ -260,15 +245,18 @@ TEST(ConvertCliErrors, LcmOutputNeedsTheSixImuChannels) {
 TEST(ConvertCliErrors, TableFlagsOnBinaryInputExit2NamingTheFlag) {
   const fs::path dir = make_temp_dir("convert_flags");
   write_text(dir / "rec.csv", kGyroOnlyCsv);
-  ASSERT_EQ(run_imunoise("convert " + quoted(dir / "rec.csv") + " -q -o " + quoted(dir / "r.imnb"))
+  ASSERT_EQ(run_imunoise("convert " + quoted_for_shell(dir / "rec.csv") + " -q -o " +
+                         quoted_for_shell(dir / "r.imnb"))
                 .exit_code,
             0);
-  const std::string bin = quoted(dir / "r.imnb");
-  const auto rate = run_imunoise("convert " + bin + " --rate 100 -o " + quoted(dir / "o.csv"));
+  const std::string bin = quoted_for_shell(dir / "r.imnb");
+  const auto rate =
+      run_imunoise("convert " + bin + " --rate 100 -o " + quoted_for_shell(dir / "o.csv"));
   EXPECT_EQ(rate.exit_code, 2);
   EXPECT_THAT(rate.err, HasSubstr("--rate does not apply to an imunoise binary recording (the "
                                   "binary header carries rate and units)"));
-  const auto cols = run_imunoise("analyze " + bin + " --gyro-cols 2 -o " + quoted(dir / "out"));
+  const auto cols =
+      run_imunoise("analyze " + bin + " --gyro-cols 2 -o " + quoted_for_shell(dir / "out"));
   EXPECT_EQ(cols.exit_code, 2);
   EXPECT_THAT(cols.err, HasSubstr("--gyro-cols does not apply"));
   const auto channel = run_imunoise("check " + bin + " --channel IMU");
@@ -280,13 +268,14 @@ TEST(ConvertCliErrors, TableFlagsOnBinaryInputExit2NamingTheFlag) {
 TEST(ConvertCliErrors, CorruptBinaryInputExits2NamingTheFile) {
   const fs::path dir = make_temp_dir("convert_corrupt");
   write_text(dir / "rec.csv", kGyroOnlyCsv);
-  ASSERT_EQ(run_imunoise("convert " + quoted(dir / "rec.csv") + " -q -o " + quoted(dir / "r.imnb"))
+  ASSERT_EQ(run_imunoise("convert " + quoted_for_shell(dir / "rec.csv") + " -q -o " +
+                         quoted_for_shell(dir / "r.imnb"))
                 .exit_code,
             0);
-  std::string bytes = read_bytes(dir / "r.imnb");
+  std::string bytes = read_file_bytes(dir / "r.imnb");
   bytes.pop_back();
   std::ofstream(dir / "r.imnb", std::ios::binary | std::ios::trunc) << bytes;
-  const auto r = run_imunoise("check " + quoted(dir / "r.imnb"));
+  const auto r = run_imunoise("check " + quoted_for_shell(dir / "r.imnb"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr((dir / "r.imnb").string() + ": file size"));
 }
