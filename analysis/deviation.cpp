@@ -14,6 +14,7 @@
 #include "analysis/tau_grid.h"
 #include "analysis/total_family.h"
 #include "common/errors.h"
+#include "common/huge_pages.h"
 #include "common/parallel_for.h"
 
 namespace imunoise::analysis {
@@ -131,17 +132,66 @@ double total_sum(const double* x, std::int64_t M, std::int64_t m) {
 }  // namespace
 
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s) {
-  std::vector<double> phase(rate.size() + 1);
+  std::vector<double> phase;
+  reserve_huge_pages(phase, rate.size() + 1);
   CompensatedSum mean_sum;
   for (double y : rate) mean_sum.add(y);
   const double mean = rate.empty() ? 0.0 : mean_sum.value() / static_cast<double>(rate.size());
   CompensatedSum running;
-  phase[0] = 0.0;
+  phase.push_back(0.0);
   for (std::size_t k = 0; k < rate.size(); ++k) {
     running.add(tau0_s * (rate[k] - mean));
-    phase[k + 1] = running.value();
+    phase.push_back(running.value());
   }
   return phase;
+}
+
+void phase_from_rate_in_place(std::vector<double>& samples, double tau0_s) {
+  const std::size_t n = samples.size();
+  // The same operations in the same order as phase_from_rate; rate sample k is read before
+  // phase sample k + 1 overwrites it.
+  CompensatedSum mean_sum;
+  for (double y : samples) mean_sum.add(y);
+  const double mean = n == 0 ? 0.0 : mean_sum.value() / static_cast<double>(n);
+  samples.push_back(0.0);
+  CompensatedSum running;
+  double rate = samples[0];
+  for (std::size_t k = 0; k < n; ++k) {
+    const double next_rate = samples[k + 1];
+    running.add(tau0_s * (rate - mean));
+    samples[k + 1] = running.value();
+    rate = next_rate;
+  }
+  samples[0] = 0.0;
+}
+
+std::vector<VarianceEstimate> overlapping_variances(DeviationType type,
+                                                    std::span<const double> phase,
+                                                    std::span<const std::int64_t> m_values,
+                                                    double tau0_s) {
+  const int order = overlapping_order(type);
+  IMUNOISE_CHECK(order != 0, AnalysisError,
+                 "overlapping_variances: " + std::string(to_string(type)) +
+                     " is not an overlapping Allan or Hadamard variance");
+  detail::check_sample_period(tau0_s);
+  const auto M = static_cast<std::int64_t>(phase.size());
+  std::vector<VarianceEstimate> out(m_values.size());
+  for (std::size_t i = 0; i < m_values.size(); ++i) {
+    const std::int64_t m = m_values[i];
+    IMUNOISE_CHECK(m >= 1, AnalysisError,
+                   "averaging factor must be >= 1, got " + std::to_string(m));
+    out[i].n_terms = estimator_term_count(type, M, m);
+    IMUNOISE_CHECK(out[i].n_terms >= 1, AnalysisError,
+                   "too few samples for " + std::string(to_string(type)) +
+                       " at m = " + std::to_string(m) + ": " + std::to_string(M) +
+                       " phase samples give no term");
+  }
+  std::vector<double> sums(m_values.size());
+  detail::overlapping_difference_sums(phase, order, m_values, sums);
+  for (std::size_t i = 0; i < m_values.size(); ++i) {
+    out[i].variance = overlapping_variance(order, sums[i], out[i].n_terms, m_values[i], tau0_s);
+  }
+  return out;
 }
 
 std::vector<double> detrended_phase(std::span<const double> phase) {
@@ -271,19 +321,33 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
 
   // OADEV and OHDEV, the statistics of `analyze`: their difference sums come first, with the
   // small factors sharing cache-resident passes (analysis/difference_sums.h). The small ones
-  // are dealt round-robin into one shared pass per thread, each large one is its own item.
+  // are dealt round-robin into one shared pass per thread; the large ones, in ascending
+  // order, are cut into runs of consecutive factors, at most kLargePassFactors each (one
+  // pass over memory per run) and at least as many runs as threads.
   std::vector<double> sums;
   const int order = overlapping_order(options.type);
   if (order != 0) {
     sums.assign(count, 0.0);
     std::vector<std::vector<std::size_t>> items(threads);
+    std::vector<std::size_t> large;
     std::size_t small = 0;
     for (std::size_t i = 0; i < count; ++i) {
       if (order * averaging_factors[i] <= detail::kSharedPassSpan) {
         items[small++ % threads].push_back(i);
       } else {
-        items.push_back({i});
+        large.push_back(i);
       }
+    }
+    std::stable_sort(large.begin(), large.end(), [&](std::size_t a, std::size_t b) {
+      return averaging_factors[a] < averaging_factors[b];
+    });
+    const std::size_t runs =
+        std::max((large.size() + detail::kLargePassFactors - 1) / detail::kLargePassFactors,
+                 std::min<std::size_t>(threads, large.size()));
+    for (std::size_t r = 0; r < runs; ++r) {
+      items.emplace_back(
+          large.begin() + static_cast<std::ptrdiff_t>(r * large.size() / runs),
+          large.begin() + static_cast<std::ptrdiff_t>((r + 1) * large.size() / runs));
     }
     std::erase_if(items, [](const auto& item) { return item.empty(); });
     parallel_for(items.size(), threads, [&](std::size_t t) {

@@ -19,6 +19,11 @@ namespace imunoise::analysis {
 /// removed first and a compensated running sum (theory.md §2 "Numerics"). Size n+1.
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s);
 
+/// phase_from_rate without a second array: SAMPLES holds the n rate samples on entry and the
+/// n+1 phase samples on return, bit for bit those of phase_from_rate (for loops that turn one
+/// simulated record after another into phase, e.g. the bootstrap).
+void phase_from_rate_in_place(std::vector<double>& samples, double tau0_s);
+
 /// Phase data with its mean slope removed: x_k − x_0 − k·(x_{M−1} − x_0)/(M−1). Every
 /// statistic here is invariant to that trend; removing it keeps digits on large biases.
 std::vector<double> detrended_phase(std::span<const double> phase);
@@ -35,6 +40,15 @@ struct VarianceEstimate {
 /// For TDEV the value is the time variance (phase unit²).
 VarianceEstimate allan_family_variance(DeviationType type, std::span<const double> phase,
                                        std::int64_t m, double tau0_s);
+
+/// OAVAR (TYPE oadev) or OHVAR (ohdev) at every factor of M_VALUES, the small factors sharing
+/// cache-resident passes and the large ones a pass per group (analysis/difference_sums.h),
+/// on the calling thread; each value equals allan_family_variance at that factor bit for bit.
+/// Throws AnalysisError for another TYPE or a factor without a term.
+std::vector<VarianceEstimate> overlapping_variances(DeviationType type,
+                                                    std::span<const double> phase,
+                                                    std::span<const std::int64_t> m_values,
+                                                    double tau0_s);
 
 /// One point of a deviation curve.
 struct DeviationPoint {

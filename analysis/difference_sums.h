@@ -5,6 +5,7 @@
 /// Not part of the public analysis API; deviation.cpp is its user.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -21,7 +22,7 @@ inline constexpr std::int64_t kDifferenceBlock = 2048;
 /// M_VALUES (each with M − order·m ≥ 1), written to SUMS (same size). The factors whose
 /// differences span at most kSharedPassSpan samples are evaluated together, block by block,
 /// while the block and its span stay in cache: the array is read from memory once for all of
-/// them. The larger factors each take their own pass.
+/// them. The larger factors take one pass per kLargePassFactors consecutive factors.
 void overlapping_difference_sums(std::span<const double> x, int order,
                                  std::span<const std::int64_t> m_values, std::span<double> sums);
 
@@ -29,5 +30,13 @@ void overlapping_difference_sums(std::span<const double> x, int order,
 /// stays in a core's L2 cache (1 MiB here) together with one block. Chosen by
 /// bench/deviation_bench.cpp: 256 KiB and 1 MiB spans were 10–30 % slower (bench/RESULTS.md).
 inline constexpr std::int64_t kSharedPassSpan = 98304;
+
+/// Factors beyond the shared span evaluated together in one block-by-block pass. Their
+/// differences reach past the cache, so every factor still streams its own x_{k+m}, x_{k+2m}
+/// (…), but the group reads x_k once and the passes over memory are shared: on 86.4 M samples
+/// (24 h at 1 kHz), one pass per factor took 3.5–3.9 s for the 27 large OAVAR factors of the
+/// log:10 grid; groups of 4 / 8 / 12 / 16 took 0.72 / 0.64 / 0.61 / 0.68 of that, and 0.71 /
+/// 0.68 / 0.69 / 0.70 for the 28 OHVAR factors (bench/RESULTS.md).
+inline constexpr std::size_t kLargePassFactors = 8;
 
 }  // namespace imunoise::analysis::detail

@@ -44,9 +44,10 @@ struct PowerCovariance {
   std::span<const double> g;  ///< g(Δ), Δ = 0…⌊L/2⌋
   std::size_t length = 0;     ///< L
 
-  /// g at any lag: L-periodic and even.
+  /// g at any lag: L-periodic and even. The callers' lags stay below 2L, so one subtraction
+  /// replaces the division (4.2 M raw bins per channel at L = 2^23).
   double at(std::size_t lag) const {
-    lag %= length;
+    if (lag >= length) lag = lag < 2 * length ? lag - length : lag % length;
     return g[std::min(lag, length - lag)];
   }
   double pair(std::size_t j, std::size_t k) const { return at(j > k ? j - k : k - j) + at(j + k); }
@@ -210,6 +211,7 @@ struct WelchEstimator::Impl {
   std::unique_ptr<double[], FftwFree> in;
   std::unique_ptr<fftw_complex[], FftwFree> out;
   fftw_plan plan = nullptr;
+  bool from_wisdom = false;   // plan rebuilt from imported wisdom (FFTW_MEASURE or better)
   std::vector<double> power;  // Σ over segments of |X_j|²
 
   ~Impl() {
@@ -250,8 +252,14 @@ WelchEstimator::WelchEstimator(std::size_t segment_length, const WelchOptions& o
     s.in.reset(static_cast<double*>(fftw_malloc(sizeof(double) * s.length)));
     s.out.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * s.bins)));
     if (s.in && s.out) {
-      s.plan =
-          fftw_plan_dft_r2c_1d(static_cast<int>(s.length), s.in.get(), s.out.get(), FFTW_ESTIMATE);
+      // Wisdom first: a plan of at least FFTW_MEASURE rigour rebuilt from imported wisdom
+      // (never a measurement here: WISDOM_ONLY returns null instead); else the heuristic plan.
+      const int n = static_cast<int>(s.length);
+      s.plan = fftw_plan_dft_r2c_1d(n, s.in.get(), s.out.get(), FFTW_MEASURE | FFTW_WISDOM_ONLY);
+      s.from_wisdom = s.plan != nullptr;
+      if (s.plan == nullptr) {
+        s.plan = fftw_plan_dft_r2c_1d(n, s.in.get(), s.out.get(), FFTW_ESTIMATE);
+      }
     }
   }
   if (!s.in || !s.out) throw AnalysisError("welch: out of memory for FFT buffers");
@@ -263,6 +271,17 @@ WelchEstimator::WelchEstimator(WelchEstimator&&) noexcept = default;
 WelchEstimator& WelchEstimator::operator=(WelchEstimator&&) noexcept = default;
 
 std::size_t WelchEstimator::segment_length() const { return impl_->length; }
+
+bool WelchEstimator::planned_from_wisdom() const { return impl_->from_wisdom; }
+
+std::size_t automatic_segment_length(std::size_t samples) {
+  IMUNOISE_CHECK(samples >= 16, InputError,
+                 "welch: record of " + std::to_string(samples) +
+                     " samples is too short (automatic segment length needs >= 16)");
+  std::size_t length = 16;
+  while (length * 2 <= samples / 8) length *= 2;
+  return length;
+}
 
 Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_hz) {
   Impl& s = *impl_;
@@ -282,9 +301,13 @@ Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_
   std::fill(s.power.begin(), s.power.end(), 0.0);
   const std::span<double> buffer(s.in.get(), s.length);
   for (std::size_t k = 0; k < segments; ++k) {
-    std::copy_n(x.begin() + static_cast<std::ptrdiff_t>(k * s.step), s.length, buffer.begin());
-    const Trend trend = fit_trend(buffer, s.options.detrend);
-    for (std::size_t n = 0; n < s.length; ++n) buffer[n] = (buffer[n] - trend.at(n)) * s.window[n];
+    // Trend and taper straight from the record, with no copy of the segment first: at
+    // L = 2^23 a segment is 64 MiB, out of cache, and the copy was one more pass over memory.
+    const std::span<const double> segment = x.subspan(k * s.step, s.length);
+    const Trend trend = fit_trend(segment, s.options.detrend);
+    for (std::size_t n = 0; n < s.length; ++n) {
+      buffer[n] = (segment[n] - trend.at(n)) * s.window[n];
+    }
     fftw_execute(s.plan);
     for (std::size_t j = 0; j < s.bins; ++j) {
       s.power[j] += s.out[j][0] * s.out[j][0] + s.out[j][1] * s.out[j][1];
@@ -294,6 +317,7 @@ Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_
   Spectrum result;
   result.segments = segments;
   result.segment_length = s.length;
+  result.fft_plan_from_wisdom = s.from_wisdom;
   result.resolution_hz = sample_rate_hz / static_cast<double>(s.length);
   result.frequency_hz.resize(s.bins);
   result.density.resize(s.bins);
@@ -339,8 +363,7 @@ Spectrum welch_psd(std::span<const double> x, double sample_rate_hz, const Welch
     IMUNOISE_CHECK(x.size() >= 16, InputError,
                    "welch: record of " + std::to_string(x.size()) +
                        " samples is too short (automatic segment length needs >= 16)");
-    length = 16;
-    while (length * 2 <= x.size() / 8) length *= 2;
+    length = automatic_segment_length(x.size());
   }
   WelchOptions resolved = options;
   resolved.segment_length = length;
@@ -358,8 +381,7 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
     IMUNOISE_CHECK(longest >= 16, InputError,
                    "welch: the longest piece has " + std::to_string(longest) +
                        " samples, too short (automatic segment length needs >= 16)");
-    length = 16;
-    while (length * 2 <= longest / 8) length *= 2;
+    length = automatic_segment_length(longest);
   }
   WelchOptions resolved = options;
   resolved.segment_length = length;
@@ -379,6 +401,7 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
 
   Spectrum out;
   out.segment_length = length;
+  out.fft_plan_from_wisdom = parts.front().fft_plan_from_wisdom;  // one estimator for all
   out.resolution_hz = parts.front().resolution_hz;
   out.frequency_hz = parts.front().frequency_hz;
   const std::size_t bins = out.frequency_hz.size();
@@ -433,6 +456,7 @@ Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
   out.resolution_hz = raw.resolution_hz;
   out.segments = raw.segments;
   out.segment_length = raw.segment_length;
+  out.fft_plan_from_wisdom = raw.fft_plan_from_wisdom;
   out.sample_variance = raw.sample_variance;
   out.integrated_power = raw.integrated_power;
 

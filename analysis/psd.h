@@ -32,8 +32,9 @@ enum class Detrend {
 /// Options of the Welch estimate.
 struct WelchOptions {
   /// Segment length L [samples]. 0 = automatic in welch_psd(): the largest power of two
-  /// ≤ n/8, at least 16. At 50 % overlap that leaves K ≥ 15 segments, i.e. ≥ ~28 χ² dof
-  /// per raw bin (±~50 % at 99 %) while resolving down to f_s/L ≈ 8/(n·τ0).
+  /// ≤ n/8, at least 16 (automatic_segment_length()). At 50 % overlap that leaves K ≥ 15
+  /// segments, i.e. ≥ ~28 χ² dof per raw bin (±~50 % at 99 %) while resolving down to
+  /// f_s/L ≈ 8/(n·τ0).
   std::size_t segment_length = 0;
   double overlap = 0.5;  ///< fraction of L shared by consecutive segments, in [0, 1)
   Window window = Window::hann;
@@ -42,16 +43,17 @@ struct WelchOptions {
 
 /// A one-sided spectrum, raw (one value per DFT bin) or log-binned (log_bin()).
 struct Spectrum {
-  std::vector<double> frequency_hz;  ///< raw: j·f_s/L, j = 0…⌊L/2⌋; binned: geometric mean
-                                     ///< of the raw frequencies in the bin [Hz]
-  std::vector<double> density;       ///< S₁ [unit²/Hz]; binned: mean of the raw S₁ in the bin
-  std::vector<double> dof;           ///< equivalent χ² degrees of freedom of each value
-  double resolution_hz = 0.0;        ///< raw bin spacing f_s/L [Hz]
-  std::size_t segments = 0;          ///< K, number of segments averaged
-  std::size_t segment_length = 0;    ///< L [samples]
-  double sample_variance = 0.0;      ///< mean square of the whole record after the same detrend
-                                     ///< (none: raw mean square) [unit²], for the Parseval check
-  double integrated_power = 0.0;     ///< Σ S₁·f_s/L over all raw bins [unit²]
+  std::vector<double> frequency_hz;   ///< raw: j·f_s/L, j = 0…⌊L/2⌋; binned: geometric mean
+                                      ///< of the raw frequencies in the bin [Hz]
+  std::vector<double> density;        ///< S₁ [unit²/Hz]; binned: mean of the raw S₁ in the bin
+  std::vector<double> dof;            ///< equivalent χ² degrees of freedom of each value
+  double resolution_hz = 0.0;         ///< raw bin spacing f_s/L [Hz]
+  std::size_t segments = 0;           ///< K, number of segments averaged
+  std::size_t segment_length = 0;     ///< L [samples]
+  bool fft_plan_from_wisdom = false;  ///< the FFT plan came from imported FFTW wisdom
+  double sample_variance = 0.0;       ///< mean square of the whole record after the same detrend
+                                      ///< (none: raw mean square) [unit²], for the Parseval check
+  double integrated_power = 0.0;      ///< Σ S₁·f_s/L over all raw bins [unit²]
   /// Raw spectra only: g(Δ), Δ = 0…⌊L/2⌋, the covariance of the segment-summed powers of
   /// two bins Δ apart, Cov(P_j, P_{j+Δ}) / (K·E[|X_j|²]²), for a locally flat Gaussian
   /// spectrum. It combines the window's frequency correlation with the segment overlap;
@@ -81,10 +83,14 @@ double effective_segments(std::span<const double> window, std::size_t segments, 
 
 /// @}
 
-/// Welch estimator for a fixed segment length: owns one FFTW r2c plan (FFTW_ESTIMATE) and
-/// its buffers, reused for every segment and every call. One instance must not be used by
-/// two threads at once; distinct instances may run in parallel (plan creation and
-/// destruction are serialised by a global mutex, execution is re-entrant).
+/// Welch estimator for a fixed segment length: owns one FFTW r2c plan and its buffers, reused
+/// for every segment and every call. The plan comes from FFTW wisdom when the process holds
+/// wisdom of at least FFTW_MEASURE rigour for that transform (imported beforehand, e.g. by
+/// io::import_fftw_wisdom); it is never measured here, so construction stays fast. Without
+/// such wisdom it is an FFTW_ESTIMATE plan. The two differ only in rounding (~1e-16
+/// relative). One instance must not be used by two threads at once; distinct instances may
+/// run in parallel (plan creation and destruction are serialised by a global mutex,
+/// execution is re-entrant).
 class WelchEstimator {
  public:
   /// @param[in] segment_length L ≥ 2 samples (options.segment_length must be 0 or equal)
@@ -107,10 +113,21 @@ class WelchEstimator {
 
   std::size_t segment_length() const;
 
+  /// True when the FFT plan was rebuilt from imported FFTW wisdom (FFTW_MEASURE or more
+  /// rigorous), false when it is the FFTW_ESTIMATE fallback.
+  bool planned_from_wisdom() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The automatic Welch segment length for a record of SAMPLES samples: the largest power of
+/// two ≤ SAMPLES/8, at least 16 (see WelchOptions::segment_length). A 24 h record at 1 kHz
+/// (86.4 M samples) gives 2^23. The one place this rule lives: welch_psd, pooled_welch_psd
+/// and `imunoise fftw-wisdom --samples` use it.
+/// @throws InputError when SAMPLES < 16.
+std::size_t automatic_segment_length(std::size_t samples);
 
 /// One-shot Welch estimate (resolves segment_length = 0, see WelchOptions).
 /// @throws InputError as WelchEstimator::estimate(), or when n < 16 for automatic L.

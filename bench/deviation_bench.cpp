@@ -14,7 +14,7 @@
 #include "analysis/tau_grid.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define BENCH_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define BENCH_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define BENCH_CLONES
 #endif

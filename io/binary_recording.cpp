@@ -1,21 +1,25 @@
 #include "io/binary_recording.h"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <bit>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <utility>
 
 #include "common/errors.h"
+#include "common/huge_pages.h"
+#include "common/parallel_for.h"
 #include "io/atomic_output.h"
 #include "io/sampling_report.h"
 
@@ -355,38 +359,6 @@ OpenedFile read_and_check_header(const std::string& path, int fd) {
   return opened;
 }
 
-/// A read-only private mapping of a whole file, unmapped on scope exit.
-class Mapping {
- public:
-  Mapping(const std::string& path, int fd, std::uint64_t size) : size_(size) {
-    void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    if (p == MAP_FAILED) {
-      throw InputError(path + ": cannot map the file (" + std::string(std::strerror(errno)) + ")");
-    }
-    base_ = static_cast<const unsigned char*>(p);
-    ::madvise(p, size, MADV_SEQUENTIAL);
-  }
-  ~Mapping() { ::munmap(const_cast<unsigned char*>(base_), size_); }
-  Mapping(const Mapping&) = delete;
-  Mapping& operator=(const Mapping&) = delete;
-
-  const unsigned char* data() const { return base_; }
-
-  /// Drops the whole pages of [begin, end) from this process (the page cache keeps them).
-  void release(std::uint64_t begin, std::uint64_t end) const {
-    const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-    const std::uint64_t first = (begin + page - 1) / page * page;
-    const std::uint64_t last = end / page * page;
-    if (last > first) {
-      ::madvise(const_cast<unsigned char*>(base_) + first, last - first, MADV_DONTNEED);
-    }
-  }
-
- private:
-  const unsigned char* base_ = nullptr;
-  std::uint64_t size_ = 0;
-};
-
 }  // namespace
 
 std::optional<BinaryLayout> binary_layout(std::uint64_t header_bytes, std::uint64_t sample_count,
@@ -580,23 +552,23 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
   const BinaryLayout& layout = opened.layout;
   const auto n = static_cast<std::size_t>(h.sample_count);
 
-  const Mapping map(path, fd.get(), layout.file_size);
   const std::uint64_t data_bytes = layout.file_size - layout.data_offset;
-  std::uint64_t copied = 0;
+  std::atomic<std::uint64_t> copied{0};
   report_progress(progress, "reading", 0, static_cast<std::int64_t>(data_bytes));
 
-  // One column at a time: copy 1 MiB, check it, release the source pages behind.
+  // pread straight into the final array, 1 MiB at a time, each chunk checked while it is in
+  // cache: the kernel copies from the page cache, with none of the 4 KiB page faults a mapping
+  // of the file costs, and a file truncated meanwhile is a short read, not a SIGBUS.
   const auto read_column = [&](std::size_t column, const std::string& name,
                                std::vector<double>& out) {
     const std::uint64_t begin = layout.column_offset(column);
-    const auto* src = reinterpret_cast<const double*>(map.data() + begin);
-    out.clear();
-    out.reserve(n);
+    reserve_huge_pages(out, n);
     for (std::size_t i = 0; i < n; i += kCopyChunkValues) {
       const std::size_t m = std::min(kCopyChunkValues, n - i);
-      out.insert(out.end(), src + i, src + i + m);
+      out.resize(i + m);
+      double* chunk = out.data() + i;
+      read_exact(path, fd.get(), begin + i * 8, chunk, m * 8);
       std::uint64_t bad = 0;
-      const double* chunk = out.data() + i;
       for (std::size_t k = 0; k < m; ++k) {
         bad |= static_cast<std::uint64_t>(
             (std::bit_cast<std::uint64_t>(chunk[k]) & kExponentMask) == kExponentMask);
@@ -610,52 +582,80 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
                                "; binary recordings hold finite values only");
         }
       }
-      map.release(begin + i * 8, begin + (i + m) * 8);
     }
     const std::uint64_t end = begin + static_cast<std::uint64_t>(n) * 8;
-    for (std::uint64_t b = end; b < begin + layout.column_stride; ++b) {
-      if (map.data()[b] != 0) throw byte_error(path, b, "padding after " + name + " must be 0");
+    std::array<unsigned char, kBinaryAlignment> pad{};
+    const auto pad_size = static_cast<std::size_t>(begin + layout.column_stride - end);
+    if (pad_size > 0) read_exact(path, fd.get(), end, pad.data(), pad_size);
+    for (std::size_t k = 0; k < pad_size; ++k) {
+      if (pad[k] != 0) throw byte_error(path, end + k, "padding after " + name + " must be 0");
     }
-    map.release(begin, begin + layout.column_stride);
     copied += layout.column_stride;
-    report_progress(progress, "reading", static_cast<std::int64_t>(copied),
-                    static_cast<std::int64_t>(data_bytes));
   };
 
   Recording rec;
   rec.source_path = path;
   rec.sample_period_s = h.sample_period_s;
   rec.start_time_s = h.start_time_s;
-  std::size_t column = 0;
-  if (h.has_time) {
-    read_column(column++, "'time_s'", rec.time_s);
-    if (rec.time_s.front() != 0.0) {
-      throw byte_error(path, layout.column_offset(0),
-                       "time_s must start at 0 (time since the first sample; the first stamp "
-                       "goes in start_time_s)");
-    }
-  }
   rec.channels = std::move(opened.header.channels);
-  for (Channel& c : rec.channels) read_column(column++, "channel '" + c.name + "'", c.values);
+  // Columns in parallel (each one thread's pread loop). Every column is read to its end or its
+  // first error, and the error of the first column in file order wins: the same message at
+  // any thread count.
+  const std::size_t time_columns = h.has_time ? 1 : 0;
+  const std::size_t columns = time_columns + rec.channels.size();
+  std::vector<std::exception_ptr> errors(columns);
+  parallel_for(
+      columns, options.threads,
+      [&](std::size_t column) {
+        try {
+          if (column < time_columns) {
+            read_column(column, "'time_s'", rec.time_s);
+            if (rec.time_s.front() != 0.0) {
+              throw byte_error(path, layout.column_offset(0),
+                               "time_s must start at 0 (time since the first sample; the first "
+                               "stamp goes in start_time_s)");
+            }
+          } else {
+            Channel& c = rec.channels[column - time_columns];
+            read_column(column, "channel '" + c.name + "'", c.values);
+          }
+        } catch (...) {
+          errors[column] = std::current_exception();
+        }
+      },
+      [&] {
+        report_progress(progress, "reading", static_cast<std::int64_t>(copied.load()),
+                        static_cast<std::int64_t>(data_bytes));
+      });
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  report_progress(progress, "reading", static_cast<std::int64_t>(data_bytes),
+                  static_cast<std::int64_t>(data_bytes));
 
-  // Sampling report exactly as io::read_recording builds it.
+  // Sampling report exactly as io::read_recording builds it; the timing checks run beside
+  // the channel checks (one item each, so the result does not depend on the thread count).
   const SamplingOptions sampling;
   TimingReport timing;
-  if (h.has_time) {
-    timing = analyze_timing(rec.time_s, sampling);
-    if (n >= 2 && !(timing.median_interval_s > 0.0)) {
-      throw byte_error(path, layout.column_offset(0),
-                       "the time stamps never increase (cannot estimate the sample rate)");
+  const std::vector<ChannelSamples> checks = channel_checks(
+      rec.channels, options.gyro_full_scale_rad_per_s, options.accel_full_scale_m_per_s2);
+  rec.report.channels.resize(checks.size());
+  parallel_for(checks.size() + 1, options.threads, [&](std::size_t item) {
+    if (item == 0) {
+      timing = h.has_time ? analyze_timing(rec.time_s, sampling)
+                          : fixed_rate_timing(*h.rate_hz, static_cast<std::int64_t>(n));
+    } else {
+      rec.report.channels[item - 1] = analyze_channel(checks[item - 1], sampling);
     }
-  } else {
-    timing = fixed_rate_timing(*h.rate_hz, static_cast<std::int64_t>(n));
+  });
+  if (h.has_time && n >= 2 && !(timing.median_interval_s > 0.0)) {
+    throw byte_error(path, layout.column_offset(0),
+                     "the time stamps never increase (cannot estimate the sample rate)");
   }
   rec.report.samples = static_cast<std::int64_t>(n);
   rec.report.timing = std::move(timing);
   rec.report.non_finite_dropped = h.non_finite_dropped;
   rec.report.rows_dropped = h.rows_dropped;
-  rec.report.channels = check_channels(rec.channels, options.gyro_full_scale_rad_per_s,
-                                       options.accel_full_scale_m_per_s2, sampling);
   return rec;
 }
 

@@ -114,16 +114,20 @@ struct BinaryReadOptions {
   std::optional<double> gyro_full_scale_rad_per_s;
   /// |specific force| at or beyond this counts as saturated [m/s²]
   std::optional<double> accel_full_scale_m_per_s2;
+  /// Threads reading the columns and running the sampling checks (0 = all cores). The result
+  /// does not depend on it.
+  unsigned threads = 0;
 };
 
 /// Reads a binary recording: the whole header is validated before any data is touched (an
-/// absurd sample_count fails the size check before any allocation), then the file is mapped
-/// and each column copied into the Recording one at a time (pages released behind the copy, so
-/// the peak memory is about the data size). A NaN/Inf value is an InputError naming the column
-/// and sample index (binary recordings hold finite values only; there is no drop option). The
-/// sampling report is built as read_recording does: from time_s (non-monotonic stamps reported,
-/// not fatal; stamps that never increase are an error), or for the fixed rate. Sample locations
-/// have no file line. `source_path` of the result is PATH. PROGRESS (optional) gets
+/// absurd sample_count fails the size check before any allocation), then the columns are read
+/// in parallel with pread straight into the Recording (no mapping, so the peak memory is the
+/// data size, and a file truncated during the read is an InputError, not a SIGBUS). A NaN/Inf value
+/// is an InputError naming the column and sample index (binary recordings hold finite values only;
+/// there is no drop option). The sampling report is built as read_recording does: from time_s
+/// (non-monotonic stamps reported, not fatal; stamps that never increase are an error), or for the
+/// fixed rate. Sample locations have no file line. `source_path` of the result is PATH. PROGRESS
+/// (optional) gets
 /// ("reading", bytes copied, data bytes).
 Recording read_binary_recording(const std::string& path, const BinaryReadOptions& options = {},
                                 const ProgressCallback& progress = {});

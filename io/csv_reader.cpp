@@ -22,6 +22,7 @@
 #include <system_error>
 
 #include "common/errors.h"
+#include "common/huge_pages.h"
 #include "common/parallel_for.h"
 
 namespace imunoise::io {
@@ -1018,7 +1019,7 @@ struct TableReader::Impl {
       const double estimate = static_cast<double>(source.size_hint()) / mean_line_bytes;
       const auto count = static_cast<std::size_t>(
           std::min(estimate * 1.02 + 16.0, static_cast<double>(source.size_hint() / 2 + 16)));
-      for (auto& v : values) v.reserve(count);
+      for (auto& v : values) reserve_huge_pages(v, count);
     }
     std::string_view line;
     while (source.next(line)) {
@@ -1109,6 +1110,7 @@ struct TableReader::Impl {
     }
     std::vector<double*> out(values.size());
     for (std::size_t s = 0; s < values.size(); ++s) {
+      reserve_huge_pages(values[s], bound);
       values[s].resize(bound);
       values[s][0] = first_row[s];
       out[s] = values[s].data();

@@ -54,13 +54,11 @@ struct Recording {
   }
 };
 
-/// The sampling report's checks of every channel (analyze_channels), the gyro channels (rad/s)
-/// against GYRO_FULL_SCALE and the accelerometer channels (m/s^2) against ACCEL_FULL_SCALE —
-/// what every reader puts in Recording::report.channels.
-inline std::vector<ChannelReport> check_channels(const std::vector<Channel>& channels,
-                                                 std::optional<double> gyro_full_scale_rad_per_s,
-                                                 std::optional<double> accel_full_scale_m_per_s2,
-                                                 const SamplingOptions& options) {
+/// The inputs of the sampling report's channel checks: the gyro channels (rad/s) against
+/// GYRO_FULL_SCALE, the accelerometer channels (m/s^2) against ACCEL_FULL_SCALE.
+inline std::vector<ChannelSamples> channel_checks(const std::vector<Channel>& channels,
+                                                  std::optional<double> gyro_full_scale_rad_per_s,
+                                                  std::optional<double> accel_full_scale_m_per_s2) {
   std::vector<ChannelSamples> checks;
   for (const Channel& ch : channels) {
     ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
@@ -68,7 +66,17 @@ inline std::vector<ChannelReport> check_channels(const std::vector<Channel>& cha
     if (ch.unit == "m/s^2") samples.full_scale = accel_full_scale_m_per_s2;
     checks.push_back(samples);
   }
-  return analyze_channels(checks, options);
+  return checks;
+}
+
+/// The sampling report's checks of every channel (analyze_channels of channel_checks) — what
+/// every reader puts in Recording::report.channels.
+inline std::vector<ChannelReport> check_channels(const std::vector<Channel>& channels,
+                                                 std::optional<double> gyro_full_scale_rad_per_s,
+                                                 std::optional<double> accel_full_scale_m_per_s2,
+                                                 const SamplingOptions& options) {
+  return analyze_channels(
+      channel_checks(channels, gyro_full_scale_rad_per_s, accel_full_scale_m_per_s2), options);
 }
 
 /// Throws InputError "PATH: too few samples: N (need at least MIN for PURPOSE)" when

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -15,9 +16,11 @@
 #include <thread>
 #include <vector>
 
+#include "analysis/psd.h"
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "io/fftw_wisdom.h"
 #include "pipeline/gap_policy.h"
 #include "tools/progress.h"
 #include "tools/verbosity.h"
@@ -155,6 +158,29 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
                      "of the record or 1000 samples refused)")
       ->capture_default_str()
       ->group(group);
+  cmd.add_option("--fftw-wisdom", s.fftw_wisdom,
+                 "FFTW wisdom file from 'imunoise fftw-wisdom': the PSD transforms use its "
+                 "measured plans (default: $IMUNOISE_FFTW_WISDOM; none: FFTW_ESTIMATE plans)")
+      ->group(group);
+}
+
+std::string import_fftw_wisdom_option(const AnalysisSettings& settings) {
+  std::string path = settings.fftw_wisdom;
+  if (path.empty()) {
+    const char* env = std::getenv("IMUNOISE_FFTW_WISDOM");
+    if (env != nullptr) path = env;
+  }
+  if (!path.empty()) io::import_fftw_wisdom(path);
+  return path;
+}
+
+std::string psd_plan_text(const AnalysisResult& result) {
+  if (result.axes.empty() || result.axes.front().psd.segment_length < 2) return "no PSD";
+  const analysis::Spectrum& psd = result.axes.front().psd;
+  std::string text = "PSD FFT plan (L = " + std::to_string(psd.segment_length) + "): ";
+  text.append(psd.fft_plan_from_wisdom ? "from FFTW wisdom"
+                                       : "FFTW_ESTIMATE (no wisdom for this length)");
+  return text;
 }
 
 std::vector<std::string> quality_findings(const io::SamplingReport& report) {

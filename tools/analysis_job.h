@@ -31,6 +31,8 @@ struct AnalysisSettings {
   std::vector<double> sinusoid_hz;
   /// Time-stamp gaps: "refuse" (default), "split" or "interpolate" (pipeline::GapPolicy).
   std::string gaps = "refuse";
+  /// `--fftw-wisdom FILE` (empty: $IMUNOISE_FFTW_WISDOM, if set and not empty).
+  std::string fftw_wisdom;
 };
 
 /// Adds the analysis flags to `cmd`; values land in `settings` (which must outlive the parse).
@@ -74,6 +76,17 @@ AnalysisResult analyze_recording_freeing_time_stamps(io::Recording& recording,
                                                      const std::string& source,
                                                      const AnalysisSettings& settings,
                                                      const AnalysisFeedback& feedback = {});
+
+/// Imports the FFTW wisdom file of `--fftw-wisdom`, or else of $IMUNOISE_FFTW_WISDOM, into the
+/// process so that the PSD plans come from it (analysis::WelchEstimator); call once, before the
+/// analysis. Returns the file imported ("" when neither names one).
+/// @throws InputError naming the file when it cannot be read or is not FFTW wisdom.
+std::string import_fftw_wisdom_option(const AnalysisSettings& settings);
+
+/// For `-v`: "PSD FFT plan (L = N): from FFTW wisdom" or "…: FFTW_ESTIMATE (no wisdom for this
+/// length)", for the segment length RESULT's PSD used. Plans once more to find out (no
+/// measurement, but buffers of ~4×8·L bytes for a moment): call only when it is printed.
+std::string psd_plan_text(const AnalysisResult& result);
 
 /// Data-quality findings of a sampling report, one line each (empty = nothing to say).
 std::vector<std::string> quality_findings(const io::SamplingReport& report);

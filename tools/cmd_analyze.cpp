@@ -227,6 +227,7 @@ void print_summary(const models::NoiseModel& model,
 /// caller adds what follows: the summary and publishing, as "outputs").
 void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   (void)pipeline::parse_gap_policy(args.analysis.gaps);  // a bad --gaps fails before the read
+  import_fftw_wisdom_option(args.analysis);              // so does a bad wisdom file
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   std::optional<std::array<NoiseCoefficients, 6>> truth;
   if (!args.truth_path.empty()) {
@@ -256,6 +257,7 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
                std::to_string(result.axes.size()) + " channels, bootstrap " +
                    std::to_string(args.analysis.bootstrap) +
                    " replicates; per stage, summed over the channels: " + channel_times.text());
+  if (args.verbosity.verbose) print_detail(args.verbosity, "analyze", psd_plan_text(result));
   const models::NoiseModel& model = result.model;
   const std::vector<pipeline::AxisAnalysis>& axes = result.axes;
   const double tau0_s = result.tau0_s;
@@ -329,6 +331,7 @@ void register_analyze_command(CLI::App& app) {
       "  imunoise analyze rec.csv -o out --truth configs/reference-imu.yaml\n"
       "  imunoise analyze imu.txt --config configs/example_input.yaml -o out --bootstrap 0\n"
       "  imunoise analyze imu.lcmlog --channel IMU -o out --publish\n"
+      "  imunoise analyze rec.imnb -o out --fftw-wisdom imu.wisdom   # see 'fftw-wisdom --help'\n"
       "Outputs: model.yaml (SI units named in every key, docs/model-yaml.md), allan.csv\n"
       "(OADEV/OHDEV with intervals and the model ADEV, per axis), psd.csv (log-binned one-sided\n"
       "PSD with dof and the model PSD, per axis); units are part of every column name.");

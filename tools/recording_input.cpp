@@ -154,6 +154,7 @@ io::Recording read_input_recording(const std::string& path, const io::InputConfi
     io::BinaryReadOptions options;
     options.gyro_full_scale_rad_per_s = config.gyro_full_scale_rad_per_s;
     options.accel_full_scale_m_per_s2 = config.accel_full_scale_m_per_s2;
+    options.threads = threads;
     return io::read_binary_recording(path, options, progress);
   }
   if (!is_lcm_log_file(path)) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <random>
 
@@ -193,12 +194,16 @@ TEST(Deviation, ResultsDoNotDependOnThreadCount) {
 
 TEST(Deviation, SharedPassesGiveEachFactorItsOwnSumAtAnyThreadCount) {
   // OADEV/OHDEV curves share cache-resident passes among the small factors (order·m up to
-  // kSharedPassSpan = 98304 samples) and give each larger factor its own pass. Every point must
-  // equal the single-factor estimator bit for bit, agree with a long-double reference, and not
-  // depend on how many threads split the factors. The factors straddle the boundary of both orders.
+  // kSharedPassSpan = 98304 samples) and evaluate the larger ones in runs of up to
+  // kLargePassFactors = 8 per pass. Every point must equal the single-factor estimator bit for
+  // bit, agree with a long-double reference, and not depend on how many threads split the
+  // factors. The factors straddle the boundary of both orders, and both orders have more than
+  // 8 large factors, listed out of order, so runs of several sizes form.
   const auto phase = phase_from_rate(white_noise(150'000, 1.0, 5), 1.0);
-  const std::vector<std::int64_t> factors = {1,     2,     3,     7,     64,    1000,
-                                             32767, 32768, 32769, 49151, 49152, 49153};
+  const std::vector<std::int64_t> factors = {
+      1,     2,     3,     7,     64,    1000,  32767, 32768, 32769, 49151, 49152, 49153,
+      40000, 35000, 45000, 38000, 36000, 42000, 44000, 47000, 33000, 60000, 52000, 70000,
+      55000, 58000, 65000, 50000, 62000, 74000, 71000, 73000, 56000, 68000, 51000, 66000};
   for (auto type : {DeviationType::oadev, DeviationType::ohdev}) {
     const std::int64_t max_m = max_averaging_factor(type, static_cast<std::int64_t>(phase.size()));
     std::vector<std::int64_t> usable;
@@ -227,6 +232,51 @@ TEST(Deviation, SharedPassesGiveEachFactorItsOwnSumAtAnyThreadCount) {
           << to_string(type) << " m=" << usable[i];
     }
   }
+}
+
+TEST(Deviation, PhaseInPlaceEqualsPhaseFromRateBitForBit) {
+  // The bootstrap turns each simulated record into phase in its own array; it must be the
+  // phase every other path computes. A bias makes the mean removal matter.
+  for (std::size_t n :
+       {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{1000}, std::size_t{100'003}}) {
+    std::vector<double> rate = white_noise(n, 0.3, 11);
+    for (double& v : rate) v += 7.25;
+    const std::vector<double> want = phase_from_rate(rate, 0.0025);
+    std::vector<double> samples = rate;
+    phase_from_rate_in_place(samples, 0.0025);
+    ASSERT_EQ(samples.size(), want.size()) << n;
+    for (std::size_t k = 0; k < want.size(); ++k) {
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(samples[k]), std::bit_cast<std::uint64_t>(want[k]))
+          << "n=" << n << " k=" << k;
+    }
+  }
+}
+
+TEST(Deviation, OverlappingVariancesEqualOneFactorAtATime) {
+  // Many factors at once (shared small-factor pass, grouped large factors) against one
+  // allan_family_variance per factor, bit for bit; factors out of order and repeated.
+  const auto phase = phase_from_rate(white_noise(120'000, 1.0, 9), 0.01);
+  const std::vector<std::int64_t> factors = {40000, 1,     3,     3,     50000, 20,    49153, 35000,
+                                             999,   59000, 36000, 37000, 38000, 41000, 42000, 2};
+  for (auto type : {DeviationType::oadev, DeviationType::ohdev}) {
+    const std::int64_t max_m = max_averaging_factor(type, static_cast<std::int64_t>(phase.size()));
+    std::vector<std::int64_t> usable;
+    for (std::int64_t m : factors) {
+      if (m <= max_m) usable.push_back(m);
+    }
+    const auto many = overlapping_variances(type, phase, usable, 0.01);
+    ASSERT_EQ(many.size(), usable.size());
+    for (std::size_t i = 0; i < usable.size(); ++i) {
+      const VarianceEstimate one = allan_family_variance(type, phase, usable[i], 0.01);
+      EXPECT_EQ(many[i].variance, one.variance) << to_string(type) << " m=" << usable[i];
+      EXPECT_EQ(many[i].n_terms, one.n_terms);
+    }
+  }
+  const std::int64_t no_term[] = {60001};  // 120 001 phase samples: 2m > M − 1
+  EXPECT_THROW((void)overlapping_variances(DeviationType::oadev, phase, no_term, 0.01),
+               AnalysisError);
+  const std::int64_t one[] = {1};
+  EXPECT_THROW((void)overlapping_variances(DeviationType::mdev, phase, one, 0.01), AnalysisError);
 }
 
 TEST(Deviation, BadArgumentsAreClearErrors) {

@@ -206,6 +206,25 @@ TEST(BinaryRecording, RoundTripWithTimeAndExtraChannelIsBitIdentical) {
   EXPECT_DOUBLE_EQ(back.report.channels[6].max, 20.999);
 }
 
+TEST(BinaryRecording, ThreadCountChangesNeitherTheRecordNorTheReport) {
+  // Columns are read in parallel (pread, 1 MiB chunks) and the sampling checks run beside the
+  // timing checks: 300 000 samples span three chunks per column.
+  const auto path = test::make_temp_dir("binrec-threads") / "rec.imnb";
+  const Recording rec = awkward_recording(300'000);
+  write_binary_recording(path.string(), rec);
+  BinaryReadOptions options;
+  options.threads = 1;
+  const Recording one = read_binary_recording(path.string(), options);
+  expect_same_recording(rec, one);
+  const std::string one_report = report_without_lines(one.report).dump();
+  for (unsigned threads : {2u, 3u, 8u}) {
+    options.threads = threads;
+    const Recording many = read_binary_recording(path.string(), options);
+    expect_same_recording(rec, many);
+    EXPECT_EQ(report_without_lines(many.report).dump(), one_report) << threads << " threads";
+  }
+}
+
 TEST(BinaryRecording, WrittenBytesFollowTheDocumentedLayout) {
   const auto path = test::make_temp_dir("binrec-layout") / "rec.imnb";
   const Recording rec = awkward_recording(5);
@@ -483,6 +502,22 @@ TEST(BinaryRecordingErrors, NanInDataNamesChannelAndSample) {
   columns = kSmallColumns;
   columns[0][3] = std::numeric_limits<double>::infinity();
   EXPECT_THAT(small_file_error(small_header(), columns), HasSubstr("Inf in 'time_s' at sample 3"));
+}
+
+TEST(BinaryRecordingErrors, TheFirstBadColumnInFileOrderIsNamedAtAnyThreadCount) {
+  // Columns are read in parallel; the error of the earliest column wins, whatever the sample
+  // index or which thread finished first.
+  auto columns = kSmallColumns;
+  columns[2][0] = std::numeric_limits<double>::quiet_NaN();
+  columns[1][3] = -std::numeric_limits<double>::infinity();
+  const auto path = test::make_temp_dir("binrec-first-error") / "bad.imnb";
+  write_bytes(path, hand_made_file(small_header().dump(), columns));
+  for (unsigned threads : {1u, 2u, 3u}) {
+    BinaryReadOptions options;
+    options.threads = threads;
+    const std::string what = error_of([&] { (void)read_binary_recording(path.string(), options); });
+    EXPECT_THAT(what, HasSubstr("Inf in channel 'gyro_x' at sample 3")) << threads;
+  }
 }
 
 TEST(BinaryRecordingErrors, NonZeroPadding) {
