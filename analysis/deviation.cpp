@@ -131,6 +131,22 @@ double total_sum(const double* x, std::int64_t M, std::int64_t m) {
 
 }  // namespace
 
+namespace {
+
+/// The number of terms of TYPE's estimator at factor M on N_PHASE phase samples; an
+/// AnalysisError when m < 1 or there is no term (the checks of every single-τ entry point).
+std::int64_t checked_term_count(DeviationType type, std::int64_t n_phase, std::int64_t m) {
+  IMUNOISE_CHECK(m >= 1, AnalysisError, "averaging factor must be >= 1, got " + std::to_string(m));
+  const std::int64_t n = estimator_term_count(type, n_phase, m);
+  IMUNOISE_CHECK(n >= 1, AnalysisError,
+                 "too few samples for " + std::string(to_string(type)) +
+                     " at m = " + std::to_string(m) + ": " + std::to_string(n_phase) +
+                     " phase samples give no term");
+  return n;
+}
+
+}  // namespace
+
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s) {
   std::vector<double> phase;
   reserve_huge_pages(phase, rate.size() + 1);
@@ -177,14 +193,7 @@ std::vector<VarianceEstimate> overlapping_variances(DeviationType type,
   const auto M = static_cast<std::int64_t>(phase.size());
   std::vector<VarianceEstimate> out(m_values.size());
   for (std::size_t i = 0; i < m_values.size(); ++i) {
-    const std::int64_t m = m_values[i];
-    IMUNOISE_CHECK(m >= 1, AnalysisError,
-                   "averaging factor must be >= 1, got " + std::to_string(m));
-    out[i].n_terms = estimator_term_count(type, M, m);
-    IMUNOISE_CHECK(out[i].n_terms >= 1, AnalysisError,
-                   "too few samples for " + std::string(to_string(type)) +
-                       " at m = " + std::to_string(m) + ": " + std::to_string(M) +
-                       " phase samples give no term");
+    out[i].n_terms = checked_term_count(type, M, m_values[i]);
   }
   std::vector<double> sums(m_values.size());
   detail::overlapping_difference_sums(phase, order, m_values, sums);
@@ -212,10 +221,7 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
   const auto M = static_cast<std::int64_t>(phase.size());
   IMUNOISE_CHECK(m >= 1, AnalysisError, "averaging factor must be >= 1, got " + std::to_string(m));
   detail::check_sample_period(tau0_s);
-  const std::int64_t n = estimator_term_count(type, M, m);
-  IMUNOISE_CHECK(n >= 1, AnalysisError,
-                 "too few samples for " + std::string(to_string(type)) + " at m = " +
-                     std::to_string(m) + ": " + std::to_string(M) + " phase samples give no term");
+  const std::int64_t n = checked_term_count(type, M, m);
   const double* x = phase.data();
   const double tau = static_cast<double>(m) * tau0_s;
   const double nn = static_cast<double>(n);
