@@ -295,76 +295,142 @@ VarianceEstimate point_variance(const DeviationOptions& options, std::span<const
   return allan_family_variance(options.type, phase, m, tau0_s);
 }
 
-}  // namespace
+/// The OAVAR sums at OAVAR_FACTORS and the OHVAR sums at OHVAR_FACTORS of one record (each
+/// factor with a term), split over THREADS. A factor in both lists (M − 3m ≥ 1) is evaluated
+/// for both orders in one pass (detail::allan_hadamard_difference_sums), the others for one
+/// order. Within each kind the small factors are dealt round-robin into one shared pass per
+/// thread, and the large ones, ascending, are cut into runs of consecutive factors, at most a
+/// group each (one pass over memory per run) and at least as many runs as threads. Every sum
+/// is bit for bit the single-factor one (fixed blocks, difference_sums.h), so neither the
+/// dealing nor the thread count shows in the results.
+struct OverlappingSums {
+  std::vector<double> oavar;
+  std::vector<double> ohvar;
+};
 
-DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
-                                 std::span<const std::int64_t> averaging_factors,
-                                 const DeviationOptions& options) {
+OverlappingSums overlapping_sums(std::span<const double> phase,
+                                 std::span<const std::int64_t> oavar_factors,
+                                 std::span<const std::int64_t> ohvar_factors, unsigned threads) {
+  OverlappingSums out{std::vector<double>(oavar_factors.size()),
+                      std::vector<double>(ohvar_factors.size())};
+  // Jobs by kind: 2 (OAVAR only), 3 (OHVAR only), 5 (both); index into each list or npos.
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  struct Job {
+    std::int64_t m;
+    std::size_t oavar;
+    std::size_t ohvar;
+  };
+  const auto ascending = [](std::span<const std::int64_t> factors) {
+    std::vector<std::size_t> idx(factors.size());
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+    std::stable_sort(idx.begin(), idx.end(),
+                     [&](std::size_t a, std::size_t b) { return factors[a] < factors[b]; });
+    return idx;
+  };
+  const std::vector<std::size_t> by2 = ascending(oavar_factors);
+  const std::vector<std::size_t> by3 = ascending(ohvar_factors);
+  const auto M = static_cast<std::int64_t>(phase.size());
+  std::vector<Job> jobs[3];  // OAVAR only, OHVAR only, both
+  std::size_t a = 0;
+  std::size_t b = 0;
+  while (a < by2.size() || b < by3.size()) {
+    const std::int64_t m2 = a < by2.size() ? oavar_factors[by2[a]] : INT64_MAX;
+    const std::int64_t m3 = b < by3.size() ? ohvar_factors[by3[b]] : INT64_MAX;
+    if (m2 == m3 && M - 3 * m2 >= 1) {
+      jobs[2].push_back({m2, by2[a++], by3[b++]});
+    } else if (m2 <= m3) {
+      jobs[0].push_back({m2, by2[a++], kNone});
+    } else {
+      jobs[1].push_back({m3, kNone, by3[b++]});
+    }
+  }
+  struct Item {
+    int kind;  // 0, 1, 2 as jobs
+    std::vector<Job> jobs;
+  };
+  std::vector<Item> items;
+  const int span_order[3] = {2, 3, 3};
+  const std::size_t group[3] = {detail::kLargePassFactors, detail::kLargePassFactors,
+                                detail::kLargeJointPassFactors};
+  for (int kind = 0; kind < 3; ++kind) {
+    std::vector<Job> large;
+    std::vector<Item> small(threads, Item{kind, {}});
+    std::size_t dealt = 0;
+    for (const Job& job : jobs[kind]) {
+      if (span_order[kind] * job.m <= detail::kSharedPassSpan) {
+        small[dealt++ % threads].jobs.push_back(job);
+      } else {
+        large.push_back(job);  // ascending already
+      }
+    }
+    for (Item& item : small) items.push_back(std::move(item));
+    const std::size_t runs = std::max((large.size() + group[kind] - 1) / group[kind],
+                                      std::min<std::size_t>(threads, large.size()));
+    for (std::size_t r = 0; r < runs; ++r) {
+      items.push_back(Item{
+          kind, std::vector<Job>(
+                    large.begin() + static_cast<std::ptrdiff_t>(r * large.size() / runs),
+                    large.begin() + static_cast<std::ptrdiff_t>((r + 1) * large.size() / runs))});
+    }
+  }
+  std::erase_if(items, [](const Item& item) { return item.jobs.empty(); });
+  parallel_for(items.size(), threads, [&](std::size_t t) {
+    const Item& item = items[t];
+    std::vector<std::int64_t> m_values;
+    for (const Job& job : item.jobs) m_values.push_back(job.m);
+    std::vector<double> sums2(m_values.size());
+    std::vector<double> sums3(m_values.size());
+    if (item.kind == 2) {
+      detail::allan_hadamard_difference_sums(phase, m_values, sums2, sums3);
+    } else if (item.kind == 0) {
+      detail::overlapping_difference_sums(phase, 2, m_values, sums2);
+    } else {
+      detail::overlapping_difference_sums(phase, 3, m_values, sums3);
+    }
+    for (std::size_t k = 0; k < item.jobs.size(); ++k) {
+      if (item.jobs[k].oavar != kNone) out.oavar[item.jobs[k].oavar] = sums2[k];
+      if (item.jobs[k].ohvar != kNone) out.ohvar[item.jobs[k].ohvar] = sums3[k];
+    }
+  });
+  return out;
+}
+
+/// Worker threads for the curves of one record of N_PHASE samples at COUNT factors.
+unsigned curve_threads(unsigned requested, std::size_t count, std::int64_t n_phase) {
+  if (n_phase < 50000) return 1;  // thread start-up would dominate
+  return std::max(1u, std::min<unsigned>(resolve_threads(requested),
+                                         static_cast<unsigned>(std::max<std::size_t>(count, 1))));
+}
+
+/// Throws unless every factor of AVERAGING_FACTORS is usable for TYPE on N_PHASE samples
+/// (WHERE: how the record is described in the message) and the confidence is in (0, 1).
+void check_curve_request(DeviationType type, std::int64_t n_phase,
+                         std::span<const std::int64_t> averaging_factors, double confidence,
+                         const std::string& where) {
+  IMUNOISE_CHECK(confidence > 0.0 && confidence < 1.0, InputError,
+                 "confidence must be in (0, 1), got " + std::to_string(confidence));
+  const std::int64_t max_m = max_averaging_factor(type, n_phase);
+  for (std::int64_t m : averaging_factors) {
+    IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
+                   "too few samples for the requested tau: m = " + std::to_string(m) + " (" +
+                       std::string(to_string(type)) + " allows m <= " + std::to_string(max_m) +
+                       where + std::to_string(n_phase) + " phase samples)");
+  }
+}
+
+/// The curve of one record once the request is checked: SUMS holds the difference sum of
+/// every factor for OADEV/OHDEV (overlapping_sums), and is empty for the other statistics.
+DeviationCurve single_record_curve(std::span<const double> phase, double tau0_s,
+                                   std::span<const std::int64_t> averaging_factors,
+                                   const DeviationOptions& options, std::span<const double> sums,
+                                   unsigned threads) {
   DeviationCurve curve;
   curve.type = options.type;
   curve.tau0_s = tau0_s;
   curve.n_phase = static_cast<std::int64_t>(phase.size());
   curve.confidence = options.confidence;
-  IMUNOISE_CHECK(options.confidence > 0.0 && options.confidence < 1.0, InputError,
-                 "confidence must be in (0, 1), got " + std::to_string(options.confidence));
-  const std::int64_t max_m = max_averaging_factor(options.type, curve.n_phase);
-  for (std::int64_t m : averaging_factors) {
-    IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
-                   "too few samples for the requested tau: m = " + std::to_string(m) + " (" +
-                       std::string(to_string(options.type)) +
-                       " allows m <= " + std::to_string(max_m) + " on " +
-                       std::to_string(curve.n_phase) + " phase samples)");
-  }
   curve.points.resize(averaging_factors.size());
-  const std::size_t count = averaging_factors.size();
-
-  // Every τ costs an O(M) pass, so the work is split over threads; each result is written by
-  // exactly one work item and computed the same way whoever runs it, so results do not
-  // depend on the thread count.
-  unsigned threads = resolve_threads(options.threads);
-  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
-  if (curve.n_phase < 50000) threads = 1;  // thread start-up would dominate
-
-  // OADEV and OHDEV, the statistics of `analyze`: their difference sums come first, with the
-  // small factors sharing cache-resident passes (analysis/difference_sums.h). The small ones
-  // are dealt round-robin into one shared pass per thread; the large ones, in ascending
-  // order, are cut into runs of consecutive factors, at most kLargePassFactors each (one
-  // pass over memory per run) and at least as many runs as threads.
-  std::vector<double> sums;
   const int order = overlapping_order(options.type);
-  if (order != 0) {
-    sums.assign(count, 0.0);
-    std::vector<std::vector<std::size_t>> items(threads);
-    std::vector<std::size_t> large;
-    std::size_t small = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      if (order * averaging_factors[i] <= detail::kSharedPassSpan) {
-        items[small++ % threads].push_back(i);
-      } else {
-        large.push_back(i);
-      }
-    }
-    std::stable_sort(large.begin(), large.end(), [&](std::size_t a, std::size_t b) {
-      return averaging_factors[a] < averaging_factors[b];
-    });
-    const std::size_t runs =
-        std::max((large.size() + detail::kLargePassFactors - 1) / detail::kLargePassFactors,
-                 std::min<std::size_t>(threads, large.size()));
-    for (std::size_t r = 0; r < runs; ++r) {
-      items.emplace_back(
-          large.begin() + static_cast<std::ptrdiff_t>(r * large.size() / runs),
-          large.begin() + static_cast<std::ptrdiff_t>((r + 1) * large.size() / runs));
-    }
-    std::erase_if(items, [](const auto& item) { return item.empty(); });
-    parallel_for(items.size(), threads, [&](std::size_t t) {
-      std::vector<std::int64_t> m_values;
-      for (std::size_t i : items[t]) m_values.push_back(averaging_factors[i]);
-      std::vector<double> item_sums(m_values.size());
-      detail::overlapping_difference_sums(phase, order, m_values, item_sums);
-      for (std::size_t k = 0; k < items[t].size(); ++k) sums[items[t][k]] = item_sums[k];
-    });
-  }
-
   auto compute_point = [&](std::size_t i) {
     const std::int64_t m = averaging_factors[i];
     DeviationPoint& p = curve.points[i];
@@ -388,8 +454,30 @@ DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
     p.ci_low = ci.low;
     p.ci_high = ci.high;
   };
-  parallel_for(count, threads, compute_point);
+  // Every τ of the non-overlapping statistics costs an O(M) pass, so the points are split
+  // over threads; each is written by exactly one work item and computed the same way whoever
+  // runs it, so results do not depend on the thread count.
+  parallel_for(averaging_factors.size(), threads, compute_point);
   return curve;
+}
+
+}  // namespace
+
+DeviationCurve compute_deviation(std::span<const double> phase, double tau0_s,
+                                 std::span<const std::int64_t> averaging_factors,
+                                 const DeviationOptions& options) {
+  const auto n_phase = static_cast<std::int64_t>(phase.size());
+  check_curve_request(options.type, n_phase, averaging_factors, options.confidence, " on ");
+  detail::check_sample_period(tau0_s);
+  const unsigned threads = curve_threads(options.threads, averaging_factors.size(), n_phase);
+  // OADEV and OHDEV, the statistics of `analyze`: their difference sums come first, the
+  // small factors sharing cache-resident passes (analysis/difference_sums.h).
+  OverlappingSums sums;
+  const int order = overlapping_order(options.type);
+  if (order == 2) sums = overlapping_sums(phase, averaging_factors, {}, threads);
+  if (order == 3) sums = overlapping_sums(phase, {}, averaging_factors, threads);
+  return single_record_curve(phase, tau0_s, averaging_factors, options,
+                             order == 2 ? sums.oavar : sums.ohvar, threads);
 }
 
 bool is_poolable(DeviationType type) {
@@ -416,66 +504,91 @@ double curve_edf(const DeviationCurve& curve, int alpha, std::int64_t m) {
   return edf;
 }
 
-DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>> phases,
-                                        double tau0_s,
-                                        std::span<const std::int64_t> averaging_factors,
-                                        const DeviationOptions& options) {
-  IMUNOISE_CHECK(!phases.empty(), InputError, "pooled deviation: no pieces");
-  if (phases.size() == 1) {
-    return compute_deviation(phases.front(), tau0_s, averaging_factors, options);
-  }
+namespace {
+
+/// Checks a pooled request of OPTIONS.type at AVERAGING_FACTORS over several PHASES (pieces)
+/// and returns the index of the longest piece, which bounds the factors.
+std::size_t check_pooled_request(std::span<const std::span<const double>> phases, double tau0_s,
+                                 std::span<const std::int64_t> averaging_factors,
+                                 const DeviationOptions& options) {
   IMUNOISE_CHECK(is_poolable(options.type), InputError,
                  std::string(to_string(options.type)) +
                      " cannot be pooled over pieces (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV can)");
   IMUNOISE_CHECK(options.confidence > 0.0 && options.confidence < 1.0, InputError,
                  "confidence must be in (0, 1), got " + std::to_string(options.confidence));
   detail::check_sample_period(tau0_s);
+  std::size_t longest = 0;
+  for (std::size_t k = 0; k < phases.size(); ++k) {
+    if (phases[k].size() > phases[longest].size()) longest = k;
+  }
+  check_curve_request(options.type, static_cast<std::int64_t>(phases[longest].size()),
+                      averaging_factors, options.confidence, " on the longest piece of ");
+  return longest;
+}
+
+/// Every piece's OAVAR sums at OAVAR_FACTORS and OHVAR sums at OHVAR_FACTORS, indexed
+/// [piece][factor] (0 where the piece holds no term), by overlapping_sums per piece.
+struct PieceSums {
+  std::vector<std::vector<double>> oavar;
+  std::vector<std::vector<double>> ohvar;
+};
+
+PieceSums pooled_overlapping_sums(std::span<const std::span<const double>> phases,
+                                  std::span<const std::int64_t> oavar_factors,
+                                  std::span<const std::int64_t> ohvar_factors,
+                                  unsigned requested_threads) {
+  PieceSums out;
+  for (const std::span<const double>& phase : phases) {
+    const auto n_k = static_cast<std::int64_t>(phase.size());
+    std::vector<std::size_t> index2;
+    std::vector<std::size_t> index3;
+    std::vector<std::int64_t> usable2;
+    std::vector<std::int64_t> usable3;
+    for (std::size_t i = 0; i < oavar_factors.size(); ++i) {
+      if (estimator_term_count(DeviationType::oadev, n_k, oavar_factors[i]) < 1) continue;
+      index2.push_back(i);
+      usable2.push_back(oavar_factors[i]);
+    }
+    for (std::size_t i = 0; i < ohvar_factors.size(); ++i) {
+      if (estimator_term_count(DeviationType::ohdev, n_k, ohvar_factors[i]) < 1) continue;
+      index3.push_back(i);
+      usable3.push_back(ohvar_factors[i]);
+    }
+    const unsigned threads = curve_threads(requested_threads, usable2.size() + usable3.size(), n_k);
+    const OverlappingSums sums = overlapping_sums(phase, usable2, usable3, threads);
+    out.oavar.emplace_back(oavar_factors.size(), 0.0);
+    out.ohvar.emplace_back(ohvar_factors.size(), 0.0);
+    for (std::size_t j = 0; j < index2.size(); ++j) out.oavar.back()[index2[j]] = sums.oavar[j];
+    for (std::size_t j = 0; j < index3.size(); ++j) out.ohvar.back()[index3[j]] = sums.ohvar[j];
+  }
+  return out;
+}
+
+/// The pooled curve once the request is checked (LONGEST from check_pooled_request).
+/// PIECE_SUMS: for OADEV/OHDEV the sums [piece][factor] (pooled_overlapping_sums), else empty.
+DeviationCurve pooled_curve(std::span<const std::span<const double>> phases, double tau0_s,
+                            std::span<const std::int64_t> averaging_factors,
+                            const DeviationOptions& options, std::size_t longest,
+                            const std::vector<std::vector<double>>& piece_sums) {
   DeviationCurve curve;
   curve.type = options.type;
   curve.tau0_s = tau0_s;
   curve.confidence = options.confidence;
-  std::size_t longest = 0;
-  for (std::size_t k = 0; k < phases.size(); ++k) {
-    const auto n_k = static_cast<std::int64_t>(phases[k].size());
-    curve.piece_n_phase.push_back(n_k);
-    curve.n_phase += n_k;
-    if (phases[k].size() > phases[longest].size()) longest = k;
+  for (const std::span<const double>& phase : phases) {
+    curve.piece_n_phase.push_back(static_cast<std::int64_t>(phase.size()));
+    curve.n_phase += static_cast<std::int64_t>(phase.size());
   }
-  const std::int64_t max_m =
-      max_averaging_factor(options.type, static_cast<std::int64_t>(phases[longest].size()));
-  for (std::int64_t m : averaging_factors) {
-    IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
-                   "too few samples for the requested tau: m = " + std::to_string(m) + " (" +
-                       std::string(to_string(options.type)) +
-                       " allows m <= " + std::to_string(max_m) + " on the longest piece of " +
-                       std::to_string(phases[longest].size()) + " phase samples)");
-  }
-  // OADEV/OHDEV: each piece's difference sums at all its factors in shared passes, as
-  // compute_deviation does; σ²_k = S_k/(c·τ²·n_k) exactly as allan_family_variance gives it.
   const int order = overlapping_order(options.type);
-  std::vector<std::vector<double>> piece_sums(phases.size());
-  if (order != 0) {
-    for (std::size_t k = 0; k < phases.size(); ++k) {
-      const auto n_k = static_cast<std::int64_t>(phases[k].size());
-      std::vector<std::int64_t> usable;
-      for (std::int64_t m : averaging_factors) {
-        if (estimator_term_count(options.type, n_k, m) >= 1) usable.push_back(m);
-      }
-      piece_sums[k].resize(usable.size());
-      if (!usable.empty()) {
-        detail::overlapping_difference_sums(phases[k], order, usable, piece_sums[k]);
-      }
-    }
-  }
-  std::vector<std::size_t> next_sum(phases.size(), 0);
   curve.points.reserve(averaging_factors.size());
-  for (std::int64_t m : averaging_factors) {
+  for (std::size_t i = 0; i < averaging_factors.size(); ++i) {
+    const std::int64_t m = averaging_factors[i];
     DeviationPoint p;
     p.m = m;
     p.tau_s = tau_of(options.type, m, tau0_s);
     p.alpha = options.alpha ? *options.alpha : noise_alpha_for(options.type, phases[longest], m);
     // Σ n_k σ²_k = Σ (squared differences)/norm: the pooled mean over all terms. Compensated,
-    // as the per-piece kernels are (theory.md §2 "Numerics").
+    // as the per-piece kernels are (theory.md §2 "Numerics"). σ²_k = S_k/(c·τ²·n_k) exactly
+    // as allan_family_variance gives it.
     detail::CompensatedSum weighted;
     std::int64_t terms = 0;
     for (std::size_t k = 0; k < phases.size(); ++k) {
@@ -484,8 +597,7 @@ DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>>
       VarianceEstimate v;
       if (order != 0) {
         v.n_terms = estimator_term_count(options.type, n_k, m);
-        v.variance =
-            overlapping_variance(order, piece_sums[k][next_sum[k]++], v.n_terms, m, tau0_s);
+        v.variance = overlapping_variance(order, piece_sums[k][i], v.n_terms, m, tau0_s);
       } else {
         v = allan_family_variance(options.type, phases[k], m, tau0_s);
       }
@@ -501,6 +613,59 @@ DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>>
     curve.points.push_back(p);
   }
   return curve;
+}
+
+}  // namespace
+
+DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>> phases,
+                                        double tau0_s,
+                                        std::span<const std::int64_t> averaging_factors,
+                                        const DeviationOptions& options) {
+  IMUNOISE_CHECK(!phases.empty(), InputError, "pooled deviation: no pieces");
+  if (phases.size() == 1) {
+    return compute_deviation(phases.front(), tau0_s, averaging_factors, options);
+  }
+  const std::size_t longest = check_pooled_request(phases, tau0_s, averaging_factors, options);
+  // OADEV/OHDEV: each piece's difference sums at all its factors in shared passes.
+  const int order = overlapping_order(options.type);
+  PieceSums sums;
+  if (order == 2) sums = pooled_overlapping_sums(phases, averaging_factors, {}, options.threads);
+  if (order == 3) sums = pooled_overlapping_sums(phases, {}, averaging_factors, options.threads);
+  return pooled_curve(phases, tau0_s, averaging_factors, options, longest,
+                      order == 2 ? sums.oavar : sums.ohvar);
+}
+
+AllanHadamardCurves compute_pooled_allan_hadamard(std::span<const std::span<const double>> phases,
+                                                  double tau0_s,
+                                                  std::span<const std::int64_t> oadev_factors,
+                                                  std::span<const std::int64_t> ohdev_factors,
+                                                  const DeviationOptions& options) {
+  IMUNOISE_CHECK(!phases.empty(), InputError, "pooled deviation: no pieces");
+  DeviationOptions oadev = options;
+  oadev.type = DeviationType::oadev;
+  DeviationOptions ohdev = options;
+  ohdev.type = DeviationType::ohdev;
+  AllanHadamardCurves out;
+  if (phases.size() == 1) {
+    const std::span<const double> phase = phases.front();
+    const auto n_phase = static_cast<std::int64_t>(phase.size());
+    check_curve_request(DeviationType::oadev, n_phase, oadev_factors, options.confidence, " on ");
+    check_curve_request(DeviationType::ohdev, n_phase, ohdev_factors, options.confidence, " on ");
+    detail::check_sample_period(tau0_s);
+    const unsigned threads =
+        curve_threads(options.threads, oadev_factors.size() + ohdev_factors.size(), n_phase);
+    const OverlappingSums sums = overlapping_sums(phase, oadev_factors, ohdev_factors, threads);
+    out.oadev = single_record_curve(phase, tau0_s, oadev_factors, oadev, sums.oavar, threads);
+    out.ohdev = single_record_curve(phase, tau0_s, ohdev_factors, ohdev, sums.ohvar, threads);
+    return out;
+  }
+  const std::size_t longest = check_pooled_request(phases, tau0_s, oadev_factors, oadev);
+  check_pooled_request(phases, tau0_s, ohdev_factors, ohdev);
+  const PieceSums sums =
+      pooled_overlapping_sums(phases, oadev_factors, ohdev_factors, options.threads);
+  out.oadev = pooled_curve(phases, tau0_s, oadev_factors, oadev, longest, sums.oavar);
+  out.ohdev = pooled_curve(phases, tau0_s, ohdev_factors, ohdev, longest, sums.ohvar);
+  return out;
 }
 
 }  // namespace imunoise::analysis

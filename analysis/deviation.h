@@ -112,6 +112,23 @@ DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>>
                                         std::span<const std::int64_t> averaging_factors,
                                         const DeviationOptions& options);
 
+/// OADEV and OHDEV of the same record or pieces (the pair `analyze` reports).
+struct AllanHadamardCurves {
+  DeviationCurve oadev;
+  DeviationCurve ohdev;
+};
+
+/// OADEV at OADEV_FACTORS and OHDEV at OHDEV_FACTORS of PHASES (one record, or pieces pooled
+/// as compute_pooled_deviation does), each curve bit for bit the one compute_pooled_deviation
+/// gives for its type with OPTIONS (whose type is ignored). A factor in both lists is read
+/// from memory once for both statistics (x_k … x_{k+3m}: 4 streams instead of 3 + 4), which
+/// on long records takes ~0.6–0.7× the time of the two curves one after the other.
+AllanHadamardCurves compute_pooled_allan_hadamard(std::span<const std::span<const double>> phases,
+                                                  double tau0_s,
+                                                  std::span<const std::int64_t> oadev_factors,
+                                                  std::span<const std::int64_t> ohdev_factors,
+                                                  const DeviationOptions& options);
+
 /// EDF of a point of CURVE at averaging factor M for noise type ALPHA: edf_for() at the
 /// curve's n_phase, or for a pooled curve the sum over its pieces that hold a term at M.
 double curve_edf(const DeviationCurve& curve, int alpha, std::int64_t m);

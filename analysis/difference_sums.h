@@ -39,4 +39,17 @@ inline constexpr std::int64_t kSharedPassSpan = 98304;
 /// 0.68 / 0.69 / 0.70 for the 28 OHVAR factors (bench/RESULTS.md).
 inline constexpr std::size_t kLargePassFactors = 8;
 
+/// The OAVAR and OHVAR sums at the same factors, both from one pass: for every m of M_VALUES
+/// (each with M − 3m ≥ 1), OAVAR_SUMS[i] = S(m) of order 2 and OHVAR_SUMS[i] = S(m) of order
+/// 3, bit for bit what overlapping_difference_sums gives for each order (same blocks, lanes
+/// and additions), but x_k … x_{k+3m} are read once for both: 4 streams instead of 7. The
+/// factors with 3m ≤ kSharedPassSpan share one cache-resident pass, the larger ones take one
+/// pass per kLargeJointPassFactors.
+void allan_hadamard_difference_sums(std::span<const double> x,
+                                    std::span<const std::int64_t> m_values,
+                                    std::span<double> oavar_sums, std::span<double> ohvar_sums);
+
+/// Large factors per pass of allan_hadamard_difference_sums (3 own streams each).
+inline constexpr std::size_t kLargeJointPassFactors = 8;
+
 }  // namespace imunoise::analysis::detail

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <random>
+#include <span>
 #include <thread>
 
 #include "analysis/deviation.h"
@@ -77,6 +78,24 @@ void run_per_tau(benchmark::State& state, DeviationType type, const char* grid) 
   set_bytes(state, factors.size());
 }
 
+/// OADEV and OHDEV on the log:10 grid together, as `imunoise analyze` computes them
+/// (compute_pooled_allan_hadamard: one pass per factor for both orders); compare with the sum
+/// of BM_OadevLog10 and BM_OhdevLog10 at the same thread count.
+void BM_OadevOhdevLog10Joint(benchmark::State& state) {
+  const auto& phase = bench_phase();
+  const auto oadev = grid_factors("log:10", DeviationType::oadev);
+  const auto ohdev = grid_factors("log:10", DeviationType::ohdev);
+  const std::span<const double> whole[] = {phase};
+  imunoise::analysis::DeviationOptions options;
+  options.alpha = 0;
+  options.threads = static_cast<unsigned>(state.range(0));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        imunoise::analysis::compute_pooled_allan_hadamard(whole, kTau0, oadev, ohdev, options));
+  }
+  set_bytes(state, oadev.size() + ohdev.size());
+}
+
 void BM_OadevOctave(benchmark::State& s) { run_curve(s, DeviationType::oadev, "octave"); }
 void BM_OadevLog10(benchmark::State& s) { run_curve(s, DeviationType::oadev, "log:10"); }
 void BM_OhdevLog10(benchmark::State& s) { run_curve(s, DeviationType::ohdev, "log:10"); }
@@ -134,6 +153,7 @@ void BM_StreamFloorLog10(benchmark::State& state) {
 BENCHMARK(BM_StreamFloorLog10)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OadevLog10)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OhdevLog10)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OadevOhdevLog10Joint)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OadevOctave)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OadevLog10PerTau)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HdevLog10PerTau)->Unit(benchmark::kMillisecond);

@@ -207,19 +207,20 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
   analysis::DeviationOptions dev;
   dev.confidence = options.confidence;
   dev.threads = options.threads;
-  dev.type = analysis::DeviationType::oadev;
   // No lag-1 noise identification here: the noise type of every point is re-derived from the
   // fitted model below (apply_model_noise_type), so the first pass only needs a provisional
   // EDF — white FM (α = 0), capped per point by fit_points. This skips ~30 % of the work.
   dev.alpha = 0;
+  // OADEV and OHDEV in shared passes: a factor of both grids is read once for both.
   const std::vector<std::int64_t> m_oadev =
-      analysis::averaging_factors(options.grid, dev.type, n_phase);
-  out.oadev = analysis::compute_pooled_deviation(phase_spans, tau0_s, m_oadev, dev);
-  progress("deviations", 1);
-  dev.type = analysis::DeviationType::ohdev;
+      analysis::averaging_factors(options.grid, analysis::DeviationType::oadev, n_phase);
   const std::vector<std::int64_t> m_ohdev =
-      analysis::averaging_factors(options.grid, dev.type, n_phase);
-  out.ohdev = analysis::compute_pooled_deviation(phase_spans, tau0_s, m_ohdev, dev);
+      analysis::averaging_factors(options.grid, analysis::DeviationType::ohdev, n_phase);
+  analysis::AllanHadamardCurves curves =
+      analysis::compute_pooled_allan_hadamard(phase_spans, tau0_s, m_oadev, m_ohdev, dev);
+  out.oadev = std::move(curves.oadev);
+  out.ohdev = std::move(curves.ohdev);
+  progress("deviations", 1);
   // Nothing below reads the phase: free it before the PSD allocates its segment buffers, so
   // the two never add up (a 24 h record at 1 kHz has 0.7 GB of phase per channel).
   phase_spans.clear();

@@ -234,6 +234,102 @@ TEST(Deviation, SharedPassesGiveEachFactorItsOwnSumAtAnyThreadCount) {
   }
 }
 
+TEST(Deviation, AllanHadamardCurvesEqualEachCurveAloneBitForBit) {
+  // `analyze` computes OADEV and OHDEV together: a factor of both lists is read once for
+  // both orders (joint passes, small ones sharing a cache-resident pass up to 3m = 98304,
+  // large ones 8 per pass), the rest one order at a time. Each curve must be the one its
+  // statistic gives alone, bit for bit, for one record at any thread count and for pieces.
+  // M = 250 001 is no multiple of the 2048-sample block, so the last blocks of every factor
+  // end at different points for the two orders. Both statistics reach m = M/4 = 62 500.
+  std::vector<double> rate = white_noise(250'000, 1.0, 17);
+  double walk = 0.0;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> step(0.0, 0.01);
+  for (double& v : rate) v += (walk += step(rng));  // rate random walk: no two sums alike
+  const auto phase = phase_from_rate(rate, 0.01);
+  const std::vector<std::int64_t> oadev_factors = {
+      1,     2,     3,     3,     7,     64,    1000,  32767, 32768, 32769, 49152, 49153,
+      40000, 35000, 45000, 38000, 36000, 42000, 44000, 47000, 33000, 55000, 62500, 41000};
+  const std::vector<std::int64_t> ohdev_factors = {3,     49153, 1,     12345, 32769, 40001, 58000,
+                                                   62500, 35000, 47000, 44000, 42000, 38000, 36000,
+                                                   45000, 33000, 41000, 40000, 2,     32768};
+  DeviationOptions options;
+  options.alpha = 0;
+  const auto expect_same = [](const DeviationCurve& got, const DeviationCurve& want,
+                              const std::string& what) {
+    ASSERT_EQ(got.points.size(), want.points.size()) << what;
+    EXPECT_EQ(got.type, want.type) << what;
+    EXPECT_EQ(got.n_phase, want.n_phase) << what;
+    EXPECT_EQ(got.piece_n_phase, want.piece_n_phase) << what;
+    for (std::size_t i = 0; i < want.points.size(); ++i) {
+      const DeviationPoint& g = got.points[i];
+      const DeviationPoint& w = want.points[i];
+      EXPECT_EQ(g.m, w.m) << what;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(g.value), std::bit_cast<std::uint64_t>(w.value))
+          << what << " m=" << w.m;
+      EXPECT_EQ(g.n_terms, w.n_terms) << what << " m=" << w.m;
+      EXPECT_EQ(g.edf, w.edf) << what << " m=" << w.m;
+      EXPECT_EQ(g.ci_low, w.ci_low) << what << " m=" << w.m;
+      EXPECT_EQ(g.ci_high, w.ci_high) << what << " m=" << w.m;
+    }
+  };
+  DeviationOptions alone = options;
+  alone.threads = 1;
+  alone.type = DeviationType::oadev;
+  const DeviationCurve oadev = compute_deviation(phase, 0.01, oadev_factors, alone);
+  alone.type = DeviationType::ohdev;
+  const DeviationCurve ohdev = compute_deviation(phase, 0.01, ohdev_factors, alone);
+  // The joint kernel against an independent long-double sum, not only against its sibling.
+  for (const DeviationPoint& p : ohdev.points) {
+    const long double want = reference_variance(DeviationType::ohdev, phase, p.m, 0.01);
+    EXPECT_NEAR(p.value * p.value / static_cast<double>(want), 1.0, 1e-13) << p.m;
+  }
+  const std::span<const double> whole[] = {phase};
+  for (unsigned threads : {1u, 2u, 3u, 5u}) {
+    options.threads = threads;
+    const AllanHadamardCurves both =
+        compute_pooled_allan_hadamard(whole, 0.01, oadev_factors, ohdev_factors, options);
+    expect_same(both.oadev, oadev, "oadev, threads " + std::to_string(threads));
+    expect_same(both.ohdev, ohdev, "ohdev, threads " + std::to_string(threads));
+  }
+
+  // Pieces: three gap-free pieces of unequal length, the shorter ones without terms at the
+  // largest factors.
+  std::vector<std::vector<double>> piece_phases;
+  std::size_t at = 0;
+  for (std::size_t n : {std::size_t{180'000}, std::size_t{40'000}, std::size_t{30'000}}) {
+    piece_phases.push_back(phase_from_rate(std::span<const double>(rate).subspan(at, n), 0.01));
+    at += n;
+  }
+  const std::vector<std::span<const double>> pieces(piece_phases.begin(), piece_phases.end());
+  const std::int64_t longest = static_cast<std::int64_t>(piece_phases.front().size());
+  const auto usable = [&](const std::vector<std::int64_t>& factors, DeviationType type) {
+    std::vector<std::int64_t> out;
+    for (std::int64_t m : factors) {
+      if (m <= max_averaging_factor(type, longest)) out.push_back(m);
+    }
+    return out;
+  };
+  const std::vector<std::int64_t> piece_oadev = usable(oadev_factors, DeviationType::oadev);
+  const std::vector<std::int64_t> piece_ohdev = usable(ohdev_factors, DeviationType::ohdev);
+  alone.type = DeviationType::oadev;
+  const DeviationCurve pooled_oadev = compute_pooled_deviation(pieces, 0.01, piece_oadev, alone);
+  alone.type = DeviationType::ohdev;
+  const DeviationCurve pooled_ohdev = compute_pooled_deviation(pieces, 0.01, piece_ohdev, alone);
+  for (unsigned threads : {1u, 3u}) {
+    options.threads = threads;
+    const AllanHadamardCurves both =
+        compute_pooled_allan_hadamard(pieces, 0.01, piece_oadev, piece_ohdev, options);
+    expect_same(both.oadev, pooled_oadev, "pooled oadev, threads " + std::to_string(threads));
+    expect_same(both.ohdev, pooled_ohdev, "pooled ohdev, threads " + std::to_string(threads));
+  }
+
+  // A factor beyond the OHDEV stop ratio is refused as it is for OHDEV alone.
+  const std::vector<std::int64_t> too_big = {62501};
+  EXPECT_THROW((void)compute_pooled_allan_hadamard(whole, 0.01, oadev_factors, too_big, options),
+               AnalysisError);
+}
+
 TEST(Deviation, PhaseInPlaceEqualsPhaseFromRateBitForBit) {
   // The bootstrap turns each simulated record into phase in its own array; it must be the
   // phase every other path computes. A bias makes the mean removal matter.
