@@ -18,12 +18,14 @@
 #include <cstring>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 
 #include "common/errors.h"
 #include "common/huge_pages.h"
 #include "common/parallel_for.h"
+#include "io/mapping_guard.h"
 
 namespace imunoise::io {
 
@@ -722,11 +724,14 @@ inline void strip_cr(std::string_view& line) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
 }
 
-/// A read-only private mapping of a whole regular file, unmapped on destruction.
+/// A read-only private mapping of a whole regular file, unmapped on destruction. Guarded
+/// (io/mapping_guard.h): if the file shrinks while it is parsed, the pages past its new end
+/// read as zeros instead of killing the process, and truncated() says so.
 class MappedText {
  public:
   MappedText() = default;
   ~MappedText() {
+    guard_.reset();  // before the range can be reused by another mapping
     if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
   }
   MappedText(const MappedText&) = delete;
@@ -741,9 +746,13 @@ class MappedText {
     if (at == MAP_FAILED) return false;
     data_ = static_cast<const char*>(at);
     size_ = size;
+    guard_.emplace(at, size);
     ::madvise(at, size, MADV_SEQUENTIAL);  // a hint: more read-ahead on a cold cache
     return true;
   }
+
+  /// True when a page past the file's end was read: the file shrank after it was mapped.
+  bool truncated() const { return guard_ && guard_->truncated(); }
 
   const char* begin() const { return data_; }
   const char* end() const { return data_ + size_; }
@@ -765,6 +774,7 @@ class MappedText {
  private:
   const char* data_ = nullptr;
   std::size_t size_ = 0;
+  std::optional<MappingGuard> guard_;
 };
 
 /// Consecutive kept rows on consecutive lines, chunk-local (LineMap::add_run after the join).
@@ -1245,8 +1255,21 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
   std::int64_t kept = 0;
   if (use_mapping) {
     const unsigned threads = resolve_threads(parallelism.threads);
-    kept = im.read_mapped(mapped, plan, rows, origin, threads, parallelism.chunk_bytes, progress,
-                          values, data);
+    // Whatever was parsed from a file that shrank meanwhile is not its content: that is the
+    // error, even when the zeros read past its end made a row fail first.
+    const auto shrank = [&] {
+      im.fail(0, 0,
+              "the file shrank while it was read (it had " + std::to_string(mapped.size()) +
+                  " bytes when opened); read it again once nothing writes to it");
+    };
+    try {
+      kept = im.read_mapped(mapped, plan, rows, origin, threads, parallelism.chunk_bytes, progress,
+                            values, data);
+    } catch (...) {
+      if (mapped.truncated()) shrank();
+      throw;
+    }
+    if (mapped.truncated()) shrank();
   } else {
     kept = im.read_streamed(rows, progress, values);
   }

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <random>
 #include <span>
@@ -386,6 +387,34 @@ TEST(CsvParallel, ProgressIsMonotoneFromTheCallingThreadAndEndsAtTheSize) {
     EXPECT_TRUE(std::is_sorted(done_seen.begin(), done_seen.end()));
     EXPECT_EQ(done_seen.back(), static_cast<std::int64_t>(text.size()));
     EXPECT_EQ(data.columns[0].size(), 3000u);
+  }
+}
+
+TEST(CsvParallel, AFileThatShrinksWhileItIsReadIsAnErrorNotACrash) {
+  // The mapped path reads through a mapping of the file: after another process truncates it,
+  // a page past the new end used to raise SIGBUS and kill the process. Truncate the file from
+  // the progress callback, after the first chunk, and expect a clear error naming the file.
+  const std::string text = make_table({.rows = 20000});
+  const auto requests = all_columns_time_relative();
+  for (const unsigned threads : {1u, 2u}) {
+    SCOPED_TRACE(std::to_string(threads) + " thread(s)");
+    const auto path = fixture("shrinks.csv", text);
+    bool truncated = false;
+    const auto truncate_once = [&](std::string_view, std::int64_t, std::int64_t) {
+      if (truncated) return;
+      truncated = true;
+      std::filesystem::resize_file(path, text.size() / 3);
+    };
+    try {
+      TableReader reader(path);
+      (void)reader.read(requests, false, truncate_once, mapped(threads, 16384));
+      ADD_FAILURE() << "no error for a file that shrank while it was read";
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(path));
+      EXPECT_THAT(e.what(), HasSubstr("the file shrank while it was read (it had " +
+                                      std::to_string(text.size()) + " bytes when opened)"));
+    }
+    EXPECT_TRUE(truncated);
   }
 }
 
