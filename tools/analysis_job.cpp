@@ -158,17 +158,19 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
                      "of the record or 1000 samples refused)")
       ->capture_default_str()
       ->group(group);
-  cmd.add_option("--fftw-wisdom", s.fftw_wisdom,
-                 "FFTW wisdom file from 'imunoise fftw-wisdom': the PSD transforms use its "
-                 "measured plans (default: $IMUNOISE_FFTW_WISDOM; none: FFTW_ESTIMATE plans)")
+  cmd.add_option(
+         "--fftw-wisdom", s.fftw_wisdom,
+         "FFTW wisdom file from 'imunoise fftw-wisdom': the PSD transforms use its "
+         "measured plans (default: $IMUNOISE_FFTW_WISDOM; none, or '': FFTW_ESTIMATE plans)")
       ->group(group);
 }
 
 std::string import_fftw_wisdom_option(const AnalysisSettings& settings) {
-  std::string path = settings.fftw_wisdom;
-  if (path.empty()) {
-    const char* env = std::getenv("IMUNOISE_FFTW_WISDOM");
-    if (env != nullptr) path = env;
+  std::string path;
+  if (settings.fftw_wisdom) {
+    path = *settings.fftw_wisdom;  // "" switches the environment's file off
+  } else if (const char* env = std::getenv("IMUNOISE_FFTW_WISDOM")) {
+    path = env;
   }
   if (!path.empty()) io::import_fftw_wisdom(path);
   return path;

@@ -4,6 +4,7 @@
 /// recording give the same model whichever command runs it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,8 +32,9 @@ struct AnalysisSettings {
   std::vector<double> sinusoid_hz;
   /// Time-stamp gaps: "refuse" (default), "split" or "interpolate" (pipeline::GapPolicy).
   std::string gaps = "refuse";
-  /// `--fftw-wisdom FILE` (empty: $IMUNOISE_FFTW_WISDOM, if set and not empty).
-  std::string fftw_wisdom;
+  /// `--fftw-wisdom FILE`; unset: $IMUNOISE_FFTW_WISDOM, if set and not empty; set to "": no
+  /// wisdom whatever the environment says.
+  std::optional<std::string> fftw_wisdom;
 };
 
 /// Adds the analysis flags to `cmd`; values land in `settings` (which must outlive the parse).
@@ -79,7 +81,8 @@ AnalysisResult analyze_recording_freeing_time_stamps(io::Recording& recording,
 
 /// Imports the FFTW wisdom file of `--fftw-wisdom`, or else of $IMUNOISE_FFTW_WISDOM, into the
 /// process so that the PSD plans come from it (analysis::WelchEstimator); call once, before the
-/// analysis. Returns the file imported ("" when neither names one).
+/// analysis. `--fftw-wisdom ""` imports nothing, even with the variable set. Returns the file
+/// imported ("" when none).
 /// @throws InputError naming the file when it cannot be read or is not FFTW wisdom.
 std::string import_fftw_wisdom_option(const AnalysisSettings& settings);
 

@@ -130,6 +130,10 @@ TEST_F(FftwWisdomCli, AnalyzeTakesTheWisdomFileFromTheEnvironment) {
   const CommandResult r = analyze(rec, dir / "out", "");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("PSD FFT plan (L = 1024): from FFTW wisdom"), std::string::npos) << r.err;
+  // An empty option switches the environment's file off.
+  const CommandResult off = analyze(rec, dir / "off", "--fftw-wisdom ''");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_NE(off.err.find("PSD FFT plan (L = 1024): FFTW_ESTIMATE"), std::string::npos) << off.err;
   // The option wins over the environment: a bad file named there is what fails.
   const auto garbage = dir / "garbage.wisdom";
   write_text(garbage, "not wisdom\n");
