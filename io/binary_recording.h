@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/progress.h"
+#include "common/version.h"
 #include "io/recording.h"
 
 namespace imunoise::io {
@@ -37,7 +38,7 @@ inline constexpr std::uint64_t kBinaryMaxHeaderBytes = 16u << 20;
 /// Output extension that selects this format.
 inline constexpr std::string_view kBinaryRecordingExtension = ".imnb";
 /// The `created_by` value this build writes (the version `imunoise --version` prints).
-inline constexpr std::string_view kBinaryCreatedBy = "imunoise 0.1.0";
+inline constexpr std::string_view kBinaryCreatedBy = kSoftwareVersion;
 /// @}
 
 /// Everything in a binary recording but the sample values.

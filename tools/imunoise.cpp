@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
 
 #include "common/errors.h"
+#include "common/version.h"
 #include "tools/commands.h"
 #include "tools/invocation.h"
 
@@ -23,7 +25,7 @@ int main(int argc, char** argv) {
       "Run 'imunoise <command> --help' for the options of each command."};
   imunoise::tools::set_invocation(argc, argv);
   app.require_subcommand(1);
-  app.set_version_flag("--version", "imunoise 0.1.0");
+  app.set_version_flag("--version", std::string(imunoise::kSoftwareVersion));
   imunoise::tools::register_analyze_command(app);
   imunoise::tools::register_allan_command(app);
   imunoise::tools::register_check_command(app);

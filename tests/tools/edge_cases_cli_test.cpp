@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "common/version.h"
+#include "io/binary_recording.h"
 #include "io/noise_model_yaml.h"
 #include "models/noise_model.h"
 #include "test_support.h"
@@ -352,7 +354,13 @@ TEST(EdgeCasesCli, CommandLineMistakesExitTwoAndHelpExitsZero) {
     EXPECT_FALSE(r.err.empty()) << args;
   }
   EXPECT_EQ(run_imunoise("analyze --help").exit_code, 0);
-  EXPECT_EQ(run_imunoise("--version").exit_code, 0);
+  // The version printed is the project's (CMakeLists.txt), the one binary recordings name as
+  // their creator.
+  const CommandResult version = run_imunoise("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out, std::string(kSoftwareVersion) + "\n");
+  EXPECT_THAT(version.out, ::testing::MatchesRegex("imunoise [0-9]+\\.[0-9]+\\.[0-9]+\n"));
+  EXPECT_EQ(io::kBinaryCreatedBy, kSoftwareVersion);
 }
 
 }  // namespace
