@@ -122,7 +122,8 @@ struct AllanHadamardCurves {
 /// as compute_pooled_deviation does), each curve bit for bit the one compute_pooled_deviation
 /// gives for its type with OPTIONS (whose type is ignored). A factor in both lists is read
 /// from memory once for both statistics (x_k … x_{k+3m}: 4 streams instead of 3 + 4), which
-/// on long records takes ~0.6–0.7× the time of the two curves one after the other.
+/// took 0.72× the time of the two curves one after the other on 11.52 M samples, 0.63–0.69× on
+/// 86.4 M (bench/RESULTS.md).
 AllanHadamardCurves compute_pooled_allan_hadamard(std::span<const std::span<const double>> phases,
                                                   double tau0_s,
                                                   std::span<const std::int64_t> oadev_factors,
