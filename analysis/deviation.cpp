@@ -313,58 +313,55 @@ OverlappingSums overlapping_sums(std::span<const double> phase,
                                  std::span<const std::int64_t> ohvar_factors, unsigned threads) {
   OverlappingSums out{std::vector<double>(oavar_factors.size()),
                       std::vector<double>(ohvar_factors.size())};
-  // Jobs by kind: 2 (OAVAR only), 3 (OHVAR only), 5 (both); index into each list or npos.
+  // A job is one factor: its index in each list (kNone where it is not asked for).
   constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   struct Job {
     std::int64_t m;
     std::size_t oavar;
     std::size_t ohvar;
   };
-  const auto ascending = [](std::span<const std::int64_t> factors) {
-    std::vector<std::size_t> idx(factors.size());
-    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    std::stable_sort(idx.begin(), idx.end(),
-                     [&](std::size_t a, std::size_t b) { return factors[a] < factors[b]; });
-    return idx;
-  };
-  const std::vector<std::size_t> by2 = ascending(oavar_factors);
-  const std::vector<std::size_t> by3 = ascending(ohvar_factors);
+  // The kernel each kind of job goes to, the order whose span decides which factors share a
+  // cache-resident pass, and how many large factors share a pass.
+  enum Kind : std::size_t { kOavarOnly, kOhvarOnly, kBoth, kKinds };
+  constexpr int kSpanOrder[kKinds] = {2, 3, 3};
+  constexpr std::size_t kGroup[kKinds] = {detail::kLargePassFactors, detail::kLargePassFactors,
+                                          detail::kLargeJointPassFactors};
+  const std::vector<std::size_t> by2 = detail::ascending_order(oavar_factors);
+  const std::vector<std::size_t> by3 = detail::ascending_order(ohvar_factors);
   const auto M = static_cast<std::int64_t>(phase.size());
-  std::vector<Job> jobs[3];  // OAVAR only, OHVAR only, both
+  std::vector<Job> jobs[kKinds];  // each ascending in m
   std::size_t a = 0;
   std::size_t b = 0;
   while (a < by2.size() || b < by3.size()) {
     const std::int64_t m2 = a < by2.size() ? oavar_factors[by2[a]] : INT64_MAX;
     const std::int64_t m3 = b < by3.size() ? ohvar_factors[by3[b]] : INT64_MAX;
     if (m2 == m3 && M - 3 * m2 >= 1) {
-      jobs[2].push_back({m2, by2[a++], by3[b++]});
+      jobs[kBoth].push_back({m2, by2[a++], by3[b++]});
     } else if (m2 <= m3) {
-      jobs[0].push_back({m2, by2[a++], kNone});
+      jobs[kOavarOnly].push_back({m2, by2[a++], kNone});
     } else {
-      jobs[1].push_back({m3, kNone, by3[b++]});
+      jobs[kOhvarOnly].push_back({m3, kNone, by3[b++]});
     }
   }
   struct Item {
-    int kind;  // 0, 1, 2 as jobs
+    Kind kind;
     std::vector<Job> jobs;
   };
   std::vector<Item> items;
-  const int span_order[3] = {2, 3, 3};
-  const std::size_t group[3] = {detail::kLargePassFactors, detail::kLargePassFactors,
-                                detail::kLargeJointPassFactors};
-  for (int kind = 0; kind < 3; ++kind) {
+  for (std::size_t k = 0; k < kKinds; ++k) {
+    const auto kind = static_cast<Kind>(k);
     std::vector<Job> large;
     std::vector<Item> small(threads, Item{kind, {}});
     std::size_t dealt = 0;
     for (const Job& job : jobs[kind]) {
-      if (span_order[kind] * job.m <= detail::kSharedPassSpan) {
+      if (kSpanOrder[kind] * job.m <= detail::kSharedPassSpan) {
         small[dealt++ % threads].jobs.push_back(job);
       } else {
-        large.push_back(job);  // ascending already
+        large.push_back(job);
       }
     }
     for (Item& item : small) items.push_back(std::move(item));
-    const std::size_t runs = std::max((large.size() + group[kind] - 1) / group[kind],
+    const std::size_t runs = std::max((large.size() + kGroup[kind] - 1) / kGroup[kind],
                                       std::min<std::size_t>(threads, large.size()));
     for (std::size_t r = 0; r < runs; ++r) {
       items.push_back(Item{
@@ -380,12 +377,16 @@ OverlappingSums overlapping_sums(std::span<const double> phase,
     for (const Job& job : item.jobs) m_values.push_back(job.m);
     std::vector<double> sums2(m_values.size());
     std::vector<double> sums3(m_values.size());
-    if (item.kind == 2) {
-      detail::allan_hadamard_difference_sums(phase, m_values, sums2, sums3);
-    } else if (item.kind == 0) {
-      detail::overlapping_difference_sums(phase, 2, m_values, sums2);
-    } else {
-      detail::overlapping_difference_sums(phase, 3, m_values, sums3);
+    switch (item.kind) {
+      case kBoth:
+        detail::allan_hadamard_difference_sums(phase, m_values, sums2, sums3);
+        break;
+      case kOavarOnly:
+        detail::overlapping_difference_sums(phase, 2, m_values, sums2);
+        break;
+      default:
+        detail::overlapping_difference_sums(phase, 3, m_values, sums3);
+        break;
     }
     for (std::size_t k = 0; k < item.jobs.size(); ++k) {
       if (item.jobs[k].oavar != kNone) out.oavar[item.jobs[k].oavar] = sums2[k];
@@ -540,20 +541,21 @@ PieceSums pooled_overlapping_sums(std::span<const std::span<const double>> phase
   PieceSums out;
   for (const std::span<const double>& phase : phases) {
     const auto n_k = static_cast<std::int64_t>(phase.size());
+    // The factors this piece holds a term at, and where they stand in the request.
+    const auto usable = [n_k](DeviationType type, std::span<const std::int64_t> factors,
+                              std::vector<std::size_t>& index, std::vector<std::int64_t>& m) {
+      for (std::size_t i = 0; i < factors.size(); ++i) {
+        if (estimator_term_count(type, n_k, factors[i]) < 1) continue;
+        index.push_back(i);
+        m.push_back(factors[i]);
+      }
+    };
     std::vector<std::size_t> index2;
     std::vector<std::size_t> index3;
     std::vector<std::int64_t> usable2;
     std::vector<std::int64_t> usable3;
-    for (std::size_t i = 0; i < oavar_factors.size(); ++i) {
-      if (estimator_term_count(DeviationType::oadev, n_k, oavar_factors[i]) < 1) continue;
-      index2.push_back(i);
-      usable2.push_back(oavar_factors[i]);
-    }
-    for (std::size_t i = 0; i < ohvar_factors.size(); ++i) {
-      if (estimator_term_count(DeviationType::ohdev, n_k, ohvar_factors[i]) < 1) continue;
-      index3.push_back(i);
-      usable3.push_back(ohvar_factors[i]);
-    }
+    usable(DeviationType::oadev, oavar_factors, index2, usable2);
+    usable(DeviationType::ohdev, ohvar_factors, index3, usable3);
     const unsigned threads = curve_threads(requested_threads, usable2.size() + usable3.size(), n_k);
     const OverlappingSums sums = overlapping_sums(phase, usable2, usable3, threads);
     out.oavar.emplace_back(oavar_factors.size(), 0.0);

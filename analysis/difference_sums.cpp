@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -158,6 +157,37 @@ void shared_pass_clone(const double* x, std::int64_t M, int order, const std::in
   }
 }
 
+/// FACTORS (ascending) of M_VALUES, and where each came from: factors[i] = m_values[from[i]].
+/// Duplicates are computed once each (cheap, and keeps the code plain).
+struct AscendingFactors {
+  std::vector<std::size_t> from;
+  std::vector<std::int64_t> factors;
+};
+
+AscendingFactors ascending_factors(std::span<const std::int64_t> m_values) {
+  AscendingFactors out{ascending_order(m_values), std::vector<std::int64_t>(m_values.size())};
+  for (std::size_t i = 0; i < out.from.size(); ++i) out.factors[i] = m_values[out.from[i]];
+  return out;
+}
+
+/// Calls PASS(first, count) once per pass over memory for FACTORS (ascending): one pass for
+/// every factor whose difference span SPAN_ORDER·m fits kSharedPassSpan (they stay in cache
+/// together), then one per run of at most GROUP larger factors: their spans exceed the cache,
+/// so each still reads its own streams, but x_k is read once for the run and the far streams
+/// of neighbouring factors are fetched together (difference_sums.h). The fixed blocks make
+/// the grouping invisible in the sums.
+template <class Pass>
+void for_each_pass(const std::vector<std::int64_t>& factors, int span_order, std::size_t group,
+                   Pass&& pass) {
+  const auto shared = static_cast<std::size_t>(
+      std::upper_bound(factors.begin(), factors.end(), kSharedPassSpan / span_order) -
+      factors.begin());
+  if (shared > 0) pass(std::size_t{0}, shared);
+  for (std::size_t i = shared; i < factors.size(); i += group) {
+    pass(i, std::min(group, factors.size() - i));
+  }
+}
+
 }  // namespace
 
 void overlapping_difference_sums(std::span<const double> x, int order,
@@ -168,28 +198,12 @@ void overlapping_difference_sums(std::span<const double> x, int order,
   for (std::int64_t m : m_values) {
     if (m < 1 || M - order * m < 1) throw std::invalid_argument("factor without a term");
   }
-  // Ascending order; duplicates are computed once each (cheap, and keeps the code plain).
-  std::vector<std::size_t> order_of(m_values.size());
-  std::iota(order_of.begin(), order_of.end(), std::size_t{0});
-  std::stable_sort(order_of.begin(), order_of.end(),
-                   [&](std::size_t a, std::size_t b) { return m_values[a] < m_values[b]; });
-  std::vector<std::int64_t> factors(m_values.size());
-  for (std::size_t i = 0; i < order_of.size(); ++i) factors[i] = m_values[order_of[i]];
-  std::vector<CompensatedSum> totals(factors.size());
-
-  // Factors whose differences fit the shared span go through one pass. The larger ones go
-  // kLargePassFactors at a time: their spans exceed the cache, so each still reads its own
-  // streams, but x_k is read once for the group and the far streams of neighbouring factors
-  // are fetched together (difference_sums.h). The fixed blocks make the grouping invisible
-  // in the sums.
-  const auto shared = static_cast<std::size_t>(
-      std::upper_bound(factors.begin(), factors.end(), kSharedPassSpan / order) - factors.begin());
-  if (shared > 0) shared_pass_clone(x.data(), M, order, factors.data(), shared, totals.data());
-  for (std::size_t i = shared; i < factors.size(); i += kLargePassFactors) {
-    const std::size_t count = std::min(kLargePassFactors, factors.size() - i);
-    shared_pass_clone(x.data(), M, order, &factors[i], count, &totals[i]);
-  }
-  for (std::size_t i = 0; i < order_of.size(); ++i) sums[order_of[i]] = totals[i].value();
+  const AscendingFactors sorted = ascending_factors(m_values);
+  std::vector<CompensatedSum> totals(sorted.factors.size());
+  for_each_pass(sorted.factors, order, kLargePassFactors, [&](std::size_t i, std::size_t count) {
+    shared_pass_clone(x.data(), M, order, &sorted.factors[i], count, &totals[i]);
+  });
+  for (std::size_t i = 0; i < sorted.from.size(); ++i) sums[sorted.from[i]] = totals[i].value();
 }
 
 void allan_hadamard_difference_sums(std::span<const double> x,
@@ -202,27 +216,16 @@ void allan_hadamard_difference_sums(std::span<const double> x,
   for (std::int64_t m : m_values) {
     if (m < 1 || M - 3 * m < 1) throw std::invalid_argument("factor without a third difference");
   }
-  std::vector<std::size_t> order_of(m_values.size());
-  std::iota(order_of.begin(), order_of.end(), std::size_t{0});
-  std::stable_sort(order_of.begin(), order_of.end(),
-                   [&](std::size_t a, std::size_t b) { return m_values[a] < m_values[b]; });
-  std::vector<std::int64_t> factors(m_values.size());
-  for (std::size_t i = 0; i < order_of.size(); ++i) factors[i] = m_values[order_of[i]];
-  std::vector<CompensatedSum> totals2(factors.size());
-  std::vector<CompensatedSum> totals3(factors.size());
+  const AscendingFactors sorted = ascending_factors(m_values);
+  std::vector<CompensatedSum> totals2(sorted.factors.size());
+  std::vector<CompensatedSum> totals3(sorted.factors.size());
   // The third difference spans 3m: that decides which factors stay in cache together.
-  const auto shared = static_cast<std::size_t>(
-      std::upper_bound(factors.begin(), factors.end(), kSharedPassSpan / 3) - factors.begin());
-  if (shared > 0) {
-    joint_shared_pass_clone(x.data(), M, factors.data(), shared, totals2.data(), totals3.data());
-  }
-  for (std::size_t i = shared; i < factors.size(); i += kLargeJointPassFactors) {
-    const std::size_t count = std::min(kLargeJointPassFactors, factors.size() - i);
-    joint_shared_pass_clone(x.data(), M, &factors[i], count, &totals2[i], &totals3[i]);
-  }
-  for (std::size_t i = 0; i < order_of.size(); ++i) {
-    oavar_sums[order_of[i]] = totals2[i].value();
-    ohvar_sums[order_of[i]] = totals3[i].value();
+  for_each_pass(sorted.factors, 3, kLargeJointPassFactors, [&](std::size_t i, std::size_t count) {
+    joint_shared_pass_clone(x.data(), M, &sorted.factors[i], count, &totals2[i], &totals3[i]);
+  });
+  for (std::size_t i = 0; i < sorted.from.size(); ++i) {
+    oavar_sums[sorted.from[i]] = totals2[i].value();
+    ohvar_sums[sorted.from[i]] = totals3[i].value();
   }
 }
 

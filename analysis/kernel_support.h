@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <numeric>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "common/errors.h"
 
@@ -40,6 +44,16 @@ double blocked_sum(std::int64_t n, Term&& term) {
     total.add(block);
   }
   return total.value();
+}
+
+/// Indices of VALUES in ascending order of value, equal values in their given order (the
+/// order the difference-sum kernels visit averaging factors in).
+inline std::vector<std::size_t> ascending_order(std::span<const std::int64_t> values) {
+  std::vector<std::size_t> order(values.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  return order;
 }
 
 /// Throws AnalysisError "<where>sample period tau0 must be positive and finite, got …".
