@@ -21,6 +21,15 @@ class AnalysisError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A caller bug: a precondition of a library function that valid user input can never break
+/// (sizes that must agree, a function called twice, an argument outside its documented range
+/// that the caller was required to check). Not a user error: the CLI reports it as an internal
+/// error. Bad user input is InputError; data that cannot answer is AnalysisError.
+class ContractViolation : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
 /// Formats "FILE:LINE:COL: MESSAGE" (line and column 1-based; 0 means "not applicable").
 inline std::string located_message(const std::string& file, std::int64_t line, std::int64_t column,
                                    const std::string& message) {
@@ -35,9 +44,16 @@ inline std::string located_message(const std::string& file, std::int64_t line, s
 }
 
 /// Always-on check for user-facing preconditions (not compiled out like assert).
+/// For a caller's contract use IMUNOISE_EXPECT.
 #define IMUNOISE_CHECK(cond, ExceptionType, message) \
   do {                                               \
     if (!(cond)) throw ExceptionType(message);       \
+  } while (false)
+
+/// Always-on check of a caller's contract: throws ContractViolation(message) when COND fails.
+#define IMUNOISE_EXPECT(cond, message)                         \
+  do {                                                         \
+    if (!(cond)) throw ::imunoise::ContractViolation(message); \
   } while (false)
 
 }  // namespace imunoise
