@@ -77,7 +77,7 @@ std::string format_number(double value) {
 std::string column_name(const Column& column) {
   switch (column.kind) {
     case ColumnKind::power_law:
-      return std::string(name_of(column.term));
+      return std::string(term_name(column.term));
     case ColumnKind::gauss_markov:
       return "gauss_markov(T_c " + format_number(column.tau_c_s) + " s)";
     case ColumnKind::sinusoid:
@@ -496,7 +496,7 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
 
   std::vector<Column> columns;
   for (NoiseTerm term : kNoiseTerms) {
-    if (!options.allow_terms[static_cast<std::size_t>(term)]) continue;
+    if (!options.allow_terms[term]) continue;
     if (hadamard && term == NoiseTerm::ramp) {
       append_note(note, "ramp not fitted: the Hadamard variance is blind to a ramp");
       continue;
@@ -588,7 +588,7 @@ Data used_data(std::span<const FitPoint> points, std::span<const std::size_t> us
 std::vector<Column> structure_columns(const FitResult& structure) {
   std::vector<Column> columns;
   for (NoiseTerm term : kNoiseTerms)
-    if (structure.terms[static_cast<std::size_t>(term)].identified)
+    if (structure.terms[term].identified)
       columns.push_back({ColumnKind::power_law, term, 0.0, 0.0});
   for (const Sinusoid& sine : structure.coefficients.sinusoids)
     columns.push_back({ColumnKind::sinusoid, NoiseTerm::white_noise, 0.0, sine.frequency_hz});
@@ -677,13 +677,12 @@ double fraction_inside_ci(std::span<const FitPoint> points, std::span<const std:
   return static_cast<double>(inside) / static_cast<double>(used.size());
 }
 
-std::array<CoefficientInterval, 5> least_squares_intervals(std::span<const FitPoint> points,
-                                                           const FitResult& fit,
-                                                           double confidence) {
-  std::array<CoefficientInterval, 5> out{};
+PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> points,
+                                                     const FitResult& fit, double confidence) {
+  PerTerm<CoefficientInterval> out{};
   std::vector<NoiseTerm> active;
   for (NoiseTerm term : kNoiseTerms) {
-    const TermFit& t = fit.terms[static_cast<std::size_t>(term)];
+    const TermFit& t = fit.terms[term];
     if (t.identified && t.value > 0.0) active.push_back(term);
   }
   if (active.empty() || fit.used.empty()) return out;

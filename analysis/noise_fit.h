@@ -55,7 +55,7 @@ inline constexpr double kSelectionThreshold = 12.0;
 
 /// Options of fit_noise_model().
 struct FitOptions {
-  std::array<bool, 5> allow_terms{true, true, true, true, true};  ///< Q N B K R (kNoiseTerms)
+  PerTerm<bool> allow_terms{true, true, true, true, true};
   GaussMarkovMode gauss_markov = GaussMarkovMode::off;
   std::vector<double> sinusoid_frequencies_hz;  ///< candidate lines f > 0 [Hz] (e.g. PSD peaks);
                                                 ///< amplitude fitted per frequency
@@ -79,8 +79,8 @@ struct TermFit {
 
 /// Result of fit_noise_model() / refit_fixed_terms().
 struct FitResult {
-  NoiseCoefficients coefficients;           ///< fitted model; 0 for terms not identified
-  std::array<TermFit, 5> terms;             ///< per NoiseTerm (kNoiseTerms order)
+  NoiseCoefficients coefficients;  ///< fitted model; 0 for terms not identified
+  PerTerm<TermFit> terms;
   std::vector<std::size_t> used;            ///< indices of the input points that were fitted
   double tau_min_s = 0.0;                   ///< smallest fitted τ [s]
   double tau_max_s = 0.0;                   ///< largest fitted τ [s]
@@ -174,8 +174,8 @@ struct CoefficientInterval {
 /// the covariance of c², weights ν/(2m²) from the fitted model, FIT's basis); zero intervals
 /// for terms not identified. Ignores the correlation between τ points (theory.md §3.5), so it
 /// is optimistic: the fallback when no bootstrap is run.
-std::array<CoefficientInterval, 5> least_squares_intervals(std::span<const FitPoint> points,
-                                                           const FitResult& fit, double confidence);
+PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> points,
+                                                     const FitResult& fit, double confidence);
 
 /// Profile upper bound of a term FIT did not identify: the coefficient c at which forcing the
 /// term to c (c²·basis added as a fixed offset, FIT's other terms re-fitted by the same

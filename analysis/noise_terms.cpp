@@ -54,38 +54,6 @@ double exponential_series_tail(double x, const std::array<double, J>& weights,
 
 }  // namespace
 
-std::string_view name_of(NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::quantization:
-      return "quantization";
-    case NoiseTerm::white_noise:
-      return "white_noise";
-    case NoiseTerm::bias_instability:
-      return "bias_instability";
-    case NoiseTerm::random_walk:
-      return "random_walk";
-    case NoiseTerm::ramp:
-      return "ramp";
-  }
-  return "unknown";
-}
-
-double coefficient_of(const NoiseCoefficients& coefficients, NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::quantization:
-      return coefficients.quantization;
-    case NoiseTerm::white_noise:
-      return coefficients.white_noise;
-    case NoiseTerm::bias_instability:
-      return coefficients.bias_instability;
-    case NoiseTerm::random_walk:
-      return coefficients.random_walk;
-    case NoiseTerm::ramp:
-      return coefficients.ramp;
-  }
-  return 0.0;
-}
-
 double term_avar_basis(NoiseTerm term, double tau_s) {
   check_tau(tau_s, "term_avar_basis");
   switch (term) {
@@ -178,7 +146,7 @@ double sinusoid_variance(double amplitude, double f_hz, double tau_s, bool hadam
 double model_variance(const NoiseCoefficients& model, double tau_s, bool hadamard) {
   double sum = 0.0;
   for (NoiseTerm term : kNoiseTerms) {
-    const double c = coefficient_of(model, term);
+    const double c = coefficient(model, term);
     sum += c * c * term_basis(term, tau_s, hadamard);
   }
   for (const GaussMarkov& gm : model.gauss_markov)

@@ -15,20 +15,6 @@
 
 namespace imunoise::analysis {
 
-/// The five IEEE-952 power-law terms, in the order of theory.md §4.3's c = (Q², N², B², K², R²).
-enum class NoiseTerm { quantization, white_noise, bias_instability, random_walk, ramp };
-
-/// All terms in their fixed order; index i of a per-term array refers to kNoiseTerms[i].
-inline constexpr std::array<NoiseTerm, 5> kNoiseTerms = {
-    NoiseTerm::quantization, NoiseTerm::white_noise, NoiseTerm::bias_instability,
-    NoiseTerm::random_walk, NoiseTerm::ramp};
-
-/// "quantization", "white_noise", "bias_instability", "random_walk" or "ramp".
-std::string_view name_of(NoiseTerm term);
-
-/// The coefficient of TERM in COEFFICIENTS (Q, N, B, K or R).
-double coefficient_of(const NoiseCoefficients& coefficients, NoiseTerm term);
-
 /// @name Power-law bases (theory.md §4.1 table)
 /// @{
 

@@ -7,6 +7,8 @@
 
 #include <vector>
 
+#include "common/noise_term.h"
+
 namespace imunoise {
 
 /// First-order Gauss–Markov (exponentially correlated) term, theory.md §4.1:
@@ -35,5 +37,25 @@ struct NoiseCoefficients {
   std::vector<GaussMarkov> gauss_markov;
   std::vector<Sinusoid> sinusoids;
 };
+
+/// The coefficient of TERM in C (Q, N, B, K or R), to read or to set.
+constexpr double& coefficient(NoiseCoefficients& c, NoiseTerm term) {
+  switch (term) {
+    case NoiseTerm::quantization:
+      return c.quantization;
+    case NoiseTerm::white_noise:
+      return c.white_noise;
+    case NoiseTerm::bias_instability:
+      return c.bias_instability;
+    case NoiseTerm::random_walk:
+      return c.random_walk;
+    case NoiseTerm::ramp:
+      break;
+  }
+  return c.ramp;
+}
+constexpr double coefficient(const NoiseCoefficients& c, NoiseTerm term) {
+  return coefficient(const_cast<NoiseCoefficients&>(c), term);
+}
 
 }  // namespace imunoise

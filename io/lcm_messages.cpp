@@ -12,7 +12,7 @@ namespace imunoise::io {
 
 namespace {
 
-/// The four arrays of each IEEE-952 term in a noise_model_t, in models::Term order (const or
+/// The four arrays of each IEEE-952 term in a noise_model_t, in NoiseTerm order (const or
 /// not with the message), so writing and reading walk the same table.
 template <typename Message>
 auto term_arrays(Message& m) {

@@ -32,15 +32,15 @@ using models::Estimate;
 using models::GaussMarkovEstimate;
 using models::NoiseModel;
 
-constexpr std::size_t kTermCount = models::kTerms.size();
-static_assert(static_cast<std::size_t>(models::Term::quantization) == 0 &&
-                  static_cast<std::size_t>(models::Term::ramp) == kTermCount - 1,
-              "the key tables below are indexed by models::Term");
+constexpr std::size_t kTermCount = kNoiseTerms.size();
+static_assert(static_cast<std::size_t>(NoiseTerm::quantization) == 0 &&
+                  static_cast<std::size_t>(NoiseTerm::ramp) == kTermCount - 1,
+              "the key tables below are indexed by NoiseTerm");
 
 /// The keys whose unit suffix depends on the sensor (units of theory.md §1.3).
 struct SensorKeys {
   std::string_view sensor;                           ///< value of `sensor:`
-  std::array<std::string_view, kTermCount> terms;    ///< per models::Term
+  std::array<std::string_view, kTermCount> terms;    ///< per NoiseTerm
   std::array<std::string_view, kTermCount> symbols;  ///< comment written after each term key
   std::string_view sigma;                            ///< Gauss–Markov σ [rad/s | m/s²]
   std::string_view sigma_ci_low;

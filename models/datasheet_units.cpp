@@ -8,31 +8,31 @@
 
 namespace imunoise::models {
 
-DatasheetUnit datasheet_unit(Term term, bool gyro) {
+DatasheetUnit datasheet_unit(NoiseTerm term, bool gyro) {
   if (gyro) {
     switch (term) {
-      case Term::quantization:
+      case NoiseTerm::quantization:
         return {1.0 / units::kMicroradian, "urad", "µrad"};
-      case Term::white_noise:
+      case NoiseTerm::white_noise:
         return {1.0 / units::kDegPerSqrtHour, "deg/sqrt(h)", "°/√h"};
-      case Term::bias_instability:
+      case NoiseTerm::bias_instability:
         return {1.0 / units::kDegPerHour, "deg/h", "°/h"};
-      case Term::random_walk:
+      case NoiseTerm::random_walk:
         return {1.0 / units::kDegPerHourPerSqrtHour, "deg/h/sqrt(h)", "°/h/√h"};
-      case Term::ramp:
+      case NoiseTerm::ramp:
         return {1.0 / units::kDegPerHourSquared, "deg/h^2", "°/h²"};
     }
   }
   switch (term) {
-    case Term::quantization:
+    case NoiseTerm::quantization:
       return {1e3, "mm/s", "mm/s"};
-    case Term::white_noise:
+    case NoiseTerm::white_noise:
       return {1.0 / units::kMicroGPerSqrtHz, "ug/sqrt(Hz)", "µg/√Hz"};
-    case Term::bias_instability:
+    case NoiseTerm::bias_instability:
       return {1.0 / units::kMicroG, "ug", "µg"};
-    case Term::random_walk:
+    case NoiseTerm::random_walk:
       return {1.0 / units::kMPerSPerHourPerSqrtHour, "m/s/h/sqrt(h)", "m/s/h/√h"};
-    case Term::ramp:
+    case NoiseTerm::ramp:
       return {units::kHour / units::kMicroG, "ug/h", "µg/h"};
   }
   return {};

@@ -25,7 +25,7 @@ double chosen(const Estimate& e, bool conservative) {
 /// The GM that stands for B (or the largest fitted GM), scaled to the chosen B.
 GaussMarkov bias_as_gm(const AxisModel& axis, double chosen_b, const FilterParameterOptions& o) {
   if (chosen_b > 0.0) {
-    const double fitted_b = axis.terms[static_cast<int>(Term::bias_instability)].value;
+    const double fitted_b = axis.terms[static_cast<int>(NoiseTerm::bias_instability)].value;
     for (const auto& stored : axis.bias_instability_gm) {
       // All three conventions are linear in B at a fixed τ_min, so the stored conversion of
       // the point value scales to the upper bound ((a) scales its measured minimum ADEV).
@@ -50,14 +50,14 @@ GaussMarkov bias_as_gm(const AxisModel& axis, double chosen_b, const FilterParam
 SensorAxisParameters one_axis(const AxisModel& axis, const FilterParameterOptions& o) {
   SensorAxisParameters p;
   p.from = axis.name;
-  const auto value = [&](Term t) {
+  const auto value = [&](NoiseTerm t) {
     return chosen(axis.terms[static_cast<int>(t)], o.conservative);
   };
-  p.quantization = value(Term::quantization);
-  p.white_noise = value(Term::white_noise);
-  p.bias_instability = value(Term::bias_instability);
-  p.random_walk = value(Term::random_walk);
-  p.ramp = value(Term::ramp);
+  p.quantization = value(NoiseTerm::quantization);
+  p.white_noise = value(NoiseTerm::white_noise);
+  p.bias_instability = value(NoiseTerm::bias_instability);
+  p.random_walk = value(NoiseTerm::random_walk);
+  p.ramp = value(NoiseTerm::ramp);
   p.bias_gm = bias_as_gm(axis, p.bias_instability, o);
   if (!o.conservative) {
     p.rw_only_white_noise = p.white_noise;

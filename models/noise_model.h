@@ -16,28 +16,16 @@
 
 namespace imunoise::models {
 
-/// The five IEEE-952 terms, in the order of NoiseCoefficients.
-enum class Term { quantization, white_noise, bias_instability, random_walk, ramp };
-inline constexpr std::array<Term, 5> kTerms{Term::quantization, Term::white_noise,
-                                            Term::bias_instability, Term::random_walk, Term::ramp};
-
-/// "quantization", "white_noise", "bias_instability", "random_walk", "ramp".
-std::string_view term_name(Term term);
-
 /// SI unit of a term for a gyro (rad…) or an accelerometer (m/s…), e.g. "rad/s^0.5".
-std::string_view term_si_unit(Term term, bool gyro);
-
-/// Reads/writes one coefficient of NoiseCoefficients by term.
-double& coefficient(NoiseCoefficients& c, Term term);
-double coefficient(const NoiseCoefficients& c, Term term);
+std::string_view term_si_unit(NoiseTerm term, bool gyro);
 
 /// One estimated coefficient [SI unit of its term].
 struct Estimate {
-  double value = 0.0;         ///< point estimate; 0 when not identified
-  double ci_low = 0.0;        ///< lower end of the interval (≥ 0)
-  double ci_high = 0.0;       ///< upper end; for a term not identified, an upper bound
-  bool identified = false;    ///< false: the data do not show this term ("0 = not identified")
-  std::string method;         ///< e.g. "wnnls-oavar" (theory.md §4.3)
+  double value = 0.0;           ///< point estimate; 0 when not identified
+  double ci_low = 0.0;          ///< lower end of the interval (≥ 0)
+  double ci_high = 0.0;         ///< upper end; for a term not identified, an upper bound
+  bool identified = false;      ///< false: the data do not show this term ("0 = not identified")
+  std::string method;           ///< e.g. "wnnls-oavar" (theory.md §4.3)
   std::string interval_method;  ///< e.g. "parametric bootstrap, 50 replicates"
 };
 
@@ -56,24 +44,24 @@ struct BiasInstabilityGm {
 
 /// Traceability values of the graphical methods (not the estimator), 0 = not found.
 struct ReadoffValues {
-  std::array<double, 5> slope{};  ///< IEEE-952 slope read-off on the OADEV curve, per Term
-  std::array<double, 5> psd{};    ///< PSD read-off (theory.md §5.3), per Term
+  PerTerm<double> slope{};  ///< IEEE-952 slope read-off on the OADEV curve
+  PerTerm<double> psd{};    ///< PSD read-off (theory.md §5.3)
 };
 
 /// The model of one axis.
 struct AxisModel {
   std::string name;  ///< gyro_x … accel_z
   bool gyro = true;  ///< gyro (rad/s) or accelerometer (m/s²)
-  std::array<Estimate, 5> terms;  ///< per Term
-  std::vector<GaussMarkovEstimate> gauss_markov;  ///< fitted GM terms (if any)
-  std::vector<Sinusoid> sinusoids;                ///< fitted sinusoids (if any)
+  PerTerm<Estimate> terms;
+  std::vector<GaussMarkovEstimate> gauss_markov;       ///< fitted GM terms (if any)
+  std::vector<Sinusoid> sinusoids;                     ///< fitted sinusoids (if any)
   std::vector<BiasInstabilityGm> bias_instability_gm;  ///< B as one GM, each convention
   std::vector<GaussMarkov> multi_gm;  ///< B as 2–4 GMs (theory.md §4.4 "preferred"); empty if B = 0
   double multi_gm_fraction_inside_ci = 0.0;  ///< fraction of fitted τ whose model ADEV with
                                              ///< multi_gm lies inside the point's 95 % CI
   double tau_min_adev_s = 0.0;  ///< τ of the ADEV minimum (used by the B → GM conversions)
   double fit_tau_min_s = 0.0, fit_tau_max_s = 0.0;  ///< τ range of the fit
-  std::string fit_note;       ///< model selection / range notes
+  std::string fit_note;                             ///< model selection / range notes
   ReadoffValues readoff;
   std::optional<bool> psd_check_pass;  ///< model PSD vs measured PSD (theory.md §5.4)
   std::string psd_check_note;
@@ -84,13 +72,13 @@ struct AxisModel {
 
 /// The model of the whole IMU.
 struct NoiseModel {
-  std::string sensor_name;          ///< free text (e.g. the input file's name)
-  std::string source;               ///< the recording it was fitted from
+  std::string sensor_name;  ///< free text (e.g. the input file's name)
+  std::string source;       ///< the recording it was fitted from
   double sample_rate_hz = 0.0;
   double duration_s = 0.0;
   std::int64_t samples = 0;
-  double confidence = 0.95;         ///< level of every [ci_low, ci_high]
-  std::vector<AxisModel> axes;      ///< usually gyro_x … accel_z
+  double confidence = 0.95;               ///< level of every [ci_low, ci_high]
+  std::vector<AxisModel> axes;            ///< usually gyro_x … accel_z
   std::vector<std::string> data_quality;  ///< sampling findings, one line each
   std::string software = "imunoise";
 

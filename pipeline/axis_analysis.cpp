@@ -123,15 +123,12 @@ int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard) {
       alpha = a;
     }
   };
-  const auto basis = [&](analysis::NoiseTerm t) {
-    return analysis::term_basis(t, tau_s, hadamard);
-  };
-  consider(c.quantization * c.quantization * basis(analysis::NoiseTerm::quantization), 2);
-  consider(c.white_noise * c.white_noise * basis(analysis::NoiseTerm::white_noise), 0);
-  consider(c.bias_instability * c.bias_instability * basis(analysis::NoiseTerm::bias_instability),
-           -1);
-  consider(c.random_walk * c.random_walk * basis(analysis::NoiseTerm::random_walk), -2);
-  if (!hadamard) consider(c.ramp * c.ramp * basis(analysis::NoiseTerm::ramp), -2);
+  const auto basis = [&](NoiseTerm t) { return analysis::term_basis(t, tau_s, hadamard); };
+  consider(c.quantization * c.quantization * basis(NoiseTerm::quantization), 2);
+  consider(c.white_noise * c.white_noise * basis(NoiseTerm::white_noise), 0);
+  consider(c.bias_instability * c.bias_instability * basis(NoiseTerm::bias_instability), -1);
+  consider(c.random_walk * c.random_walk * basis(NoiseTerm::random_walk), -2);
+  if (!hadamard) consider(c.ramp * c.ramp * basis(NoiseTerm::ramp), -2);
   for (const GaussMarkov& gm : c.gauss_markov) {
     const double v = analysis::gauss_markov_variance(gm.sigma, gm.tau_c_s, tau_s, hadamard);
     consider(v, tau_s < gm.tau_c_s ? -2 : 0);
@@ -280,7 +277,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
     }
     model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") + note;
   }
-  std::array<Interval, 5> intervals{};
+  PerTerm<Interval> intervals{};
   std::string interval_method;
   std::vector<Interval> gm_sigma, gm_tau;
   if (options.bootstrap_replicates >= 2) {
@@ -305,7 +302,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
     intervals = analysis::least_squares_intervals(points, out.fit, options.confidence);
     interval_method = "weighted least squares covariance (ignores inter-tau correlation)";
   }
-  for (models::Term term : models::kTerms) {
+  for (NoiseTerm term : kNoiseTerms) {
     const auto t = static_cast<std::size_t>(term);
     models::Estimate& e = model.terms[t];
     e.value = out.fit.terms[t].identified ? out.fit.terms[t].value : 0.0;
@@ -318,7 +315,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
     } else {
       e.ci_low = 0.0;
       const double bound =
-          analysis::profile_upper_bound(points, out.fit, static_cast<analysis::NoiseTerm>(t),
+          analysis::profile_upper_bound(points, out.fit, static_cast<NoiseTerm>(t),
                                         options.confidence, fit_options.weight_iterations);
       e.ci_high = std::isfinite(bound) ? bound : 0.0;
       e.interval_method = std::isfinite(bound)
@@ -363,7 +360,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
   // 5. B → Gauss–Markov (theory.md §4.4): every convention, named, and the multi-GM form.
   model.tau_min_adev_s =
       model_adev_minimum_tau(out.fit.coefficients, out.fit.tau_min_s, out.fit.tau_max_s);
-  const double b = model.terms[static_cast<std::size_t>(models::Term::bias_instability)].value;
+  const double b = model.terms[NoiseTerm::bias_instability].value;
   if (b > 0.0) {
     for (models::GmConvention convention :
          {models::GmConvention::min_adev_at_tau_min, models::GmConvention::peak_match,

@@ -71,7 +71,7 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
   const std::size_t gm_count = fit.coefficients.gauss_markov.size();
 
   struct Replicate {
-    std::array<double, 5> terms{};
+    PerTerm<double> terms{};
     std::vector<double> gm_sigma, gm_tau;
     bool ok = false;
   };

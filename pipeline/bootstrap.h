@@ -34,11 +34,11 @@ using Interval = analysis::CoefficientInterval;
 /// Bootstrap intervals of every fitted parameter.
 struct BootstrapResult {
   int replicates = 0;
-  std::array<Interval, 5> terms;             ///< Q N B K R, in analysis::NoiseTerm order
+  PerTerm<Interval> terms;
   std::vector<Interval> gauss_markov_sigma;  ///< per fitted GM term (same order as the fit)
   std::vector<Interval> gauss_markov_tau_c;  ///< [s]
   /// Replicate values per term (for diagnostics and tests), replicates × 5.
-  std::vector<std::array<double, 5>> term_samples;
+  std::vector<PerTerm<double>> term_samples;
 };
 
 /// Bootstraps FIT (made by analysis::fit_noise_model on POINTS, whose τ are m·τ0 with the

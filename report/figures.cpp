@@ -84,27 +84,27 @@ void add_series(Figure& f, Series s, std::string csv_id) {
 }
 
 /// ADEV of one term of C alone (the other coefficients zeroed) at each τ.
-std::vector<double> term_adev(const NoiseCoefficients& c, analysis::NoiseTerm term,
+std::vector<double> term_adev(const NoiseCoefficients& c, NoiseTerm term,
                               const std::vector<double>& tau) {
   std::vector<double> out;
-  const double coefficient = analysis::coefficient_of(c, term);
+  const double value = coefficient(c, term);
   for (double t : tau) {
-    out.push_back(coefficient * std::sqrt(analysis::term_avar_basis(term, t)));
+    out.push_back(value * std::sqrt(analysis::term_avar_basis(term, t)));
   }
   return out;
 }
 
-const char* term_symbol(analysis::NoiseTerm term) {
+const char* term_symbol(NoiseTerm term) {
   switch (term) {
-    case analysis::NoiseTerm::quantization:
+    case NoiseTerm::quantization:
       return "Q";
-    case analysis::NoiseTerm::white_noise:
+    case NoiseTerm::white_noise:
       return "N";
-    case analysis::NoiseTerm::bias_instability:
+    case NoiseTerm::bias_instability:
       return "B";
-    case analysis::NoiseTerm::random_walk:
+    case NoiseTerm::random_walk:
       return "K";
-    case analysis::NoiseTerm::ramp:
+    case NoiseTerm::ramp:
       return "R";
   }
   return "?";
@@ -197,8 +197,8 @@ Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
     std::string term_list;
     std::vector<Series> terms;
     std::vector<std::string> term_ids;
-    for (analysis::NoiseTerm term : analysis::kNoiseTerms) {
-      if (!(analysis::coefficient_of(c, term) > 0.0)) continue;
+    for (NoiseTerm term : kNoiseTerms) {
+      if (!(coefficient(c, term) > 0.0)) continue;
       Series s;
       s.x = tau;
       s.y = term_adev(c, term, tau);
@@ -241,17 +241,17 @@ Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
     const auto& readoff = axis->readoff.slope;
     const double b_factor = std::sqrt(2.0 * std::log(2.0) / std::numbers::pi);
     const struct {
-      models::Term term;
+      NoiseTerm term;
       double tau_s, factor;
-    } places[] = {{models::Term::quantization, std::sqrt(3.0), 1.0},
-                  {models::Term::white_noise, 1.0, 1.0},
-                  {models::Term::bias_instability, axis->tau_min_adev_s, b_factor},
-                  {models::Term::random_walk, 3.0, 1.0},
-                  {models::Term::ramp, std::sqrt(2.0), 1.0}};
+    } places[] = {{NoiseTerm::quantization, std::sqrt(3.0), 1.0},
+                  {NoiseTerm::white_noise, 1.0, 1.0},
+                  {NoiseTerm::bias_instability, axis->tau_min_adev_s, b_factor},
+                  {NoiseTerm::random_walk, 3.0, 1.0},
+                  {NoiseTerm::ramp, std::sqrt(2.0), 1.0}};
     for (const auto& place : places) {
       const double value = readoff[static_cast<std::size_t>(place.term)];
       if (!(value > 0.0) || !(place.tau_s > 0.0)) continue;
-      const char* symbol = term_symbol(static_cast<analysis::NoiseTerm>(place.term));
+      const char* symbol = term_symbol(static_cast<NoiseTerm>(place.term));
       f.plot.points.push_back({place.tau_s, value * place.factor, letter + " " + symbol, color});
     }
   }

@@ -185,15 +185,15 @@ void print_summary(const models::NoiseModel& model,
             << "ieee952 = the graphical slope read-off of the OADEV curve, for traceability\n";
   for (bool gyro : {true, false}) {
     std::cout << "\n" << (gyro ? "gyro" : "accel") << "\n";
-    for (models::Term term : models::kTerms) {
+    for (NoiseTerm term : kNoiseTerms) {
       const models::DatasheetUnit unit = models::datasheet_unit(term, gyro);
-      std::cout << "  " << models::term_name(term) << " [" << unit.ascii << "]\n";
+      std::cout << "  " << term_name(term) << " [" << unit.ascii << "]\n";
       for (std::size_t i = 0; i < model.axes.size(); ++i) {
         const models::AxisModel& axis = model.axes[i];
         if (axis.gyro != gyro) continue;
-        const models::Estimate& e = axis.terms[static_cast<std::size_t>(term)];
+        const models::Estimate& e = axis.terms[term];
         std::cout << "    " << axis.name << ": " << estimate_text(e, unit);
-        const double slope = axis.readoff.slope[static_cast<std::size_t>(term)];
+        const double slope = axis.readoff.slope[term];
         if (slope > 0.0)
           std::cout << "   ieee952 " << significant_number_text(slope * unit.factor, 4);
         if (truth) {
@@ -201,7 +201,7 @@ void print_summary(const models::NoiseModel& model,
               std::find(kImuChannelNames.begin(), kImuChannelNames.end(), axis.name) -
               kImuChannelNames.begin());
           if (channel < 6) {
-            const double true_value = models::coefficient((*truth)[channel], term);
+            const double true_value = coefficient((*truth)[channel], term);
             const bool inside = true_value >= e.ci_low && true_value <= e.ci_high;
             std::cout << "   true " << significant_number_text(true_value * unit.factor, 4)
                       << (inside ? "  (inside)" : "  (OUTSIDE)");

@@ -112,17 +112,17 @@ std::string num(double v, int digits = 4) {
   return std::isfinite(v) ? significant_number_text(v, digits) : "—";
 }
 
-std::string term_label(models::Term term, bool gyro) {
+std::string term_label(NoiseTerm term, bool gyro) {
   switch (term) {
-    case models::Term::quantization:
+    case NoiseTerm::quantization:
       return "Q quantization";
-    case models::Term::white_noise:
+    case NoiseTerm::white_noise:
       return gyro ? "N angle random walk" : "N velocity random walk";
-    case models::Term::bias_instability:
+    case NoiseTerm::bias_instability:
       return "B bias instability";
-    case models::Term::random_walk:
+    case NoiseTerm::random_walk:
       return gyro ? "K rate random walk" : "K acceleration random walk";
-    case models::Term::ramp:
+    case NoiseTerm::ramp:
       return gyro ? "R rate ramp" : "R acceleration ramp";
   }
   return "";
@@ -156,11 +156,11 @@ report::Table summary_table(const models::NoiseModel& model) {
               "IEEE-952 read-off",
               "method"};
   for (const models::AxisModel& axis : model.axes) {
-    for (models::Term term : models::kTerms) {
-      const models::Estimate& e = axis.terms[static_cast<std::size_t>(term)];
+    for (NoiseTerm term : kNoiseTerms) {
+      const models::Estimate& e = axis.terms[term];
       const models::DatasheetUnit unit = models::datasheet_unit(term, axis.gyro);
       const double f = unit.factor;
-      const double readoff = axis.readoff.slope[static_cast<std::size_t>(term)];
+      const double readoff = axis.readoff.slope[term];
       std::vector<std::string> row{axis.name, term_label(term, axis.gyro)};
       if (e.identified) {
         row.push_back(num(e.value));

@@ -84,10 +84,10 @@ TEST(NoiseFit, RecoversAllFivePowerLawTermsFromAnExactCurve) {
   const FitResult fit = fit_noise_model(points);
   for (NoiseTerm term : kNoiseTerms) {
     const auto i = static_cast<std::size_t>(term);
-    EXPECT_TRUE(fit.terms[i].identified) << name_of(term);
-    EXPECT_NEAR(fit.terms[i].value / coefficient_of(truth, term), 1.0, 1e-6) << name_of(term);
-    EXPECT_NEAR(coefficient_of(fit.coefficients, term), fit.terms[i].value, 0.0);
-    EXPECT_GT(fit.terms[i].contribution, 0.4) << name_of(term);  // each dominates somewhere
+    EXPECT_TRUE(fit.terms[i].identified) << term_name(term);
+    EXPECT_NEAR(fit.terms[i].value / coefficient(truth, term), 1.0, 1e-6) << term_name(term);
+    EXPECT_NEAR(coefficient(fit.coefficients, term), fit.terms[i].value, 0.0);
+    EXPECT_GT(fit.terms[i].contribution, 0.4) << term_name(term);  // each dominates somewhere
   }
   EXPECT_EQ(fit.parameters, 5);
   EXPECT_EQ(fit.used.size(), points.size());
@@ -173,7 +173,7 @@ TEST(NoiseFit, HadamardModeUsesTheHvarBasis) {
   const FitResult fit = fit_noise_model(exact_points(truth, -20, 40, true), options);
   EXPECT_TRUE(fit.hadamard);
   for (std::size_t i : {kQ, kN, kB, kK})
-    EXPECT_NEAR(fit.terms[i].value / coefficient_of(truth, kNoiseTerms[i]), 1.0, 1e-6) << i;
+    EXPECT_NEAR(fit.terms[i].value / coefficient(truth, kNoiseTerms[i]), 1.0, 1e-6) << i;
   EXPECT_FALSE(fit.terms[kR].identified);
   EXPECT_NE(fit.selection_note.find("ramp not fitted"), std::string::npos);
 }
@@ -229,8 +229,8 @@ TEST(NoiseFit, ArbitraryPositiveCurvesGiveFiniteNonNegativeCoefficients) {
     options.gauss_markov = trial % 2 == 0 ? GaussMarkovMode::on : GaussMarkovMode::off;
     const FitResult fit = fit_noise_model(points, options);
     for (NoiseTerm term : kNoiseTerms) {
-      const double c = coefficient_of(fit.coefficients, term);
-      EXPECT_TRUE(std::isfinite(c) && c >= 0.0) << trial << " " << name_of(term);
+      const double c = coefficient(fit.coefficients, term);
+      EXPECT_TRUE(std::isfinite(c) && c >= 0.0) << trial << " " << term_name(term);
     }
     for (const GaussMarkov& gm : fit.coefficients.gauss_markov)
       EXPECT_TRUE(std::isfinite(gm.sigma) && gm.sigma > 0.0 && gm.tau_c_s > 0.0) << trial;

@@ -59,11 +59,11 @@ double numerical_hvar(const std::function<double(double)>& R, double tau) {
 }
 
 TEST(NoiseTerms, NamesAndOrder) {
-  EXPECT_EQ(name_of(NoiseTerm::quantization), "quantization");
-  EXPECT_EQ(name_of(NoiseTerm::white_noise), "white_noise");
-  EXPECT_EQ(name_of(NoiseTerm::bias_instability), "bias_instability");
-  EXPECT_EQ(name_of(NoiseTerm::random_walk), "random_walk");
-  EXPECT_EQ(name_of(NoiseTerm::ramp), "ramp");
+  EXPECT_EQ(term_name(NoiseTerm::quantization), "quantization");
+  EXPECT_EQ(term_name(NoiseTerm::white_noise), "white_noise");
+  EXPECT_EQ(term_name(NoiseTerm::bias_instability), "bias_instability");
+  EXPECT_EQ(term_name(NoiseTerm::random_walk), "random_walk");
+  EXPECT_EQ(term_name(NoiseTerm::ramp), "ramp");
   for (std::size_t i = 0; i < kNoiseTerms.size(); ++i)
     EXPECT_EQ(static_cast<std::size_t>(kNoiseTerms[i]), i);
 }

@@ -73,13 +73,13 @@ TEST(SlopeReadoff, RecoversEachSingleTermExactly) {
     for (NoiseTerm other : kNoiseTerms) {
       const SlopeReadoffTerm& t = term_of(r, other);
       if (other == term) {
-        EXPECT_TRUE(t.found) << name_of(term);
-        EXPECT_NEAR(t.value / value, 1.0, 1e-9) << name_of(term);
-        EXPECT_EQ(t.points, tau.size()) << name_of(term);
+        EXPECT_TRUE(t.found) << term_name(term);
+        EXPECT_NEAR(t.value / value, 1.0, 1e-9) << term_name(term);
+        EXPECT_EQ(t.points, tau.size()) << term_name(term);
         EXPECT_EQ(t.tau_low_s, tau.front());
         EXPECT_EQ(t.tau_high_s, tau.back());
       } else {
-        EXPECT_FALSE(t.found) << name_of(other) << " in a pure " << name_of(term) << " curve";
+        EXPECT_FALSE(t.found) << term_name(other) << " in a pure " << term_name(term) << " curve";
         EXPECT_EQ(t.value, 0.0);
       }
     }

@@ -14,8 +14,6 @@
 namespace imunoise::ins {
 namespace {
 
-using models::Term;
-
 constexpr double kN = 1.16355e-4;  // theory.md §8.2 ARW, 0.4 deg/√h [rad/√s]
 constexpr double kB = 1.22173e-4;  // theory.md §8.2 bias instability, 25.2 deg/h [rad/s]
 constexpr double kK = 6.80678e-6;  // theory.md §8.2 RRW [rad/s^{3/2}]
@@ -34,9 +32,9 @@ models::AxisModel axis(const std::string& name, bool gyro, double n, double b, d
   models::AxisModel a;
   a.name = name;
   a.gyro = gyro;
-  a.terms[static_cast<int>(Term::white_noise)] = estimate(n, 1.1 * n);
-  a.terms[static_cast<int>(Term::bias_instability)] = estimate(b, 1.2 * b);
-  a.terms[static_cast<int>(Term::random_walk)] = estimate(k, 2.0 * k);
+  a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 1.1 * n);
+  a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 1.2 * b);
+  a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(k, 2.0 * k);
   a.tau_min_adev_s = 29.6;
   a.fit_tau_min_s = 0.01;
   a.fit_tau_max_s = 3000.0;

@@ -33,7 +33,6 @@ namespace {
 using models::AxisModel;
 using models::Estimate;
 using models::NoiseModel;
-using models::Term;
 using test::expect_throw_containing;
 
 Estimate estimate(double value, double low, double high) {
@@ -50,11 +49,11 @@ AxisModel axis(const std::string& name, bool gyro, double n, double b, double k)
   AxisModel a;
   a.name = name;
   a.gyro = gyro;
-  a.terms[static_cast<int>(Term::quantization)] = estimate(0.0, 0.0, 0.1 * n);
-  a.terms[static_cast<int>(Term::white_noise)] = estimate(n, 0.98 * n, 1.02 * n);
-  a.terms[static_cast<int>(Term::bias_instability)] = estimate(b, 0.9 * b, 1.1 * b);
-  a.terms[static_cast<int>(Term::random_walk)] = estimate(k, 0.7 * k, 1.4 * k);
-  a.terms[static_cast<int>(Term::ramp)] = estimate(0.0, 0.0, 0.0);
+  a.terms[static_cast<int>(NoiseTerm::quantization)] = estimate(0.0, 0.0, 0.1 * n);
+  a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 0.98 * n, 1.02 * n);
+  a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 0.9 * b, 1.1 * b);
+  a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(k, 0.7 * k, 1.4 * k);
+  a.terms[static_cast<int>(NoiseTerm::ramp)] = estimate(0.0, 0.0, 0.0);
   a.tau_min_adev_s = 29.6;
   a.fit_tau_min_s = 0.005;
   a.fit_tau_max_s = 3600.0;
@@ -173,7 +172,7 @@ TEST(FilterExport, DiscreteSigmasAt100HzForPx4AndVins) {
 TEST(FilterExport, PositiveRangeWarningForPx4) {
   auto quiet = worked_example();
   for (auto& a : quiet.axes)
-    if (!a.gyro) a.terms[static_cast<int>(Term::white_noise)] = estimate(1e-4, 1e-4, 1e-4);
+    if (!a.gyro) a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(1e-4, 1e-4, 1e-4);
   const auto px4 = export_config(quiet, request(ExportFormat::px4));
   EXPECT_NE(px4.find("WARNING: EKF2_ACC_NOISE = 0.001 is outside PX4's allowed range [0.01, 1.0]"),
             std::string::npos);
@@ -288,7 +287,8 @@ TEST(FilterExport, ConservativeWritesTheFoldedOverbound) {
 
 TEST(FilterExport, ErrorsNameWhatIsMissing) {
   auto m = worked_example();
-  for (auto& a : m.axes) a.terms[static_cast<int>(Term::random_walk)] = estimate(0.0, 0.0, 1e-6);
+  for (auto& a : m.axes)
+    a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(0.0, 0.0, 1e-6);
   // Kalibr rejects a zero random walk; the error says how to get a usable file.
   expect_throw_containing<InputError>(
       [&] { export_config(m, request(ExportFormat::kalibr)); },

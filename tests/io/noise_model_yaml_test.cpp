@@ -443,14 +443,14 @@ TEST(NoiseModelYaml, MinimalFileLoadsWithDefaults) {
   const AxisModel& gyro = model.axes[0];
   EXPECT_EQ(gyro.name, "gyro_x");
   EXPECT_TRUE(gyro.gyro);
-  const Estimate& arw = gyro.terms[static_cast<std::size_t>(models::Term::white_noise)];
+  const Estimate& arw = gyro.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
   EXPECT_EQ(arw.value, 2.9e-05);
   EXPECT_EQ(arw.ci_low, 2.9e-05);  // interval defaults to the value
   EXPECT_EQ(arw.ci_high, 2.9e-05);
   EXPECT_TRUE(arw.identified);  // defaults to value > 0
   EXPECT_EQ(arw.method, "");
   EXPECT_EQ(arw.interval_method, "");
-  EXPECT_FALSE(gyro.terms[static_cast<std::size_t>(models::Term::quantization)].identified);
+  EXPECT_FALSE(gyro.terms[static_cast<std::size_t>(NoiseTerm::quantization)].identified);
   EXPECT_TRUE(gyro.gauss_markov.empty());
   EXPECT_TRUE(gyro.sinusoids.empty());
   EXPECT_TRUE(gyro.bias_instability_gm.empty());
@@ -468,7 +468,7 @@ TEST(NoiseModelYaml, MinimalFileLoadsWithDefaults) {
   const AxisModel& accel = model.axes[1];
   EXPECT_EQ(accel.name, "accel_x");
   EXPECT_FALSE(accel.gyro);
-  EXPECT_EQ(accel.terms[static_cast<std::size_t>(models::Term::bias_instability)].value, 3e-4);
+  EXPECT_EQ(accel.terms[static_cast<std::size_t>(NoiseTerm::bias_instability)].value, 3e-4);
 }
 
 TEST(NoiseModelYaml, PartialEntriesTakeTheirDefaults) {

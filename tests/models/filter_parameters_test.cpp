@@ -30,11 +30,11 @@ AxisModel axis(const std::string& name, bool gyro, double n, double b, double k)
   AxisModel a;
   a.name = name;
   a.gyro = gyro;
-  a.terms[static_cast<int>(Term::white_noise)] = estimate(n, 0.9 * n, 1.1 * n);
-  a.terms[static_cast<int>(Term::bias_instability)] = estimate(b, 0.8 * b, 1.2 * b);
-  a.terms[static_cast<int>(Term::random_walk)] = estimate(k, 0.5 * k, 2.0 * k);
-  a.terms[static_cast<int>(Term::quantization)] = estimate(0.0, 0.0, 0.0);
-  a.terms[static_cast<int>(Term::ramp)] = estimate(0.0, 0.0, 0.0);
+  a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 0.9 * n, 1.1 * n);
+  a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 0.8 * b, 1.2 * b);
+  a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(k, 0.5 * k, 2.0 * k);
+  a.terms[static_cast<int>(NoiseTerm::quantization)] = estimate(0.0, 0.0, 0.0);
+  a.terms[static_cast<int>(NoiseTerm::ramp)] = estimate(0.0, 0.0, 0.0);
   a.tau_min_adev_s = 29.6;
   a.fit_tau_min_s = 0.01;
   a.fit_tau_max_s = 3000.0;

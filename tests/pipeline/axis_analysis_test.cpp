@@ -48,8 +48,8 @@ TEST(AxisAnalysis, WhitePlusRandomWalkIsRecoveredWithIntervalsAroundTheTruth) {
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 30;
   const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
-  const auto& n = a.model.terms[static_cast<std::size_t>(models::Term::white_noise)];
-  const auto& k = a.model.terms[static_cast<std::size_t>(models::Term::random_walk)];
+  const auto& n = a.model.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
+  const auto& k = a.model.terms[static_cast<std::size_t>(NoiseTerm::random_walk)];
   ASSERT_TRUE(n.identified);
   ASSERT_TRUE(k.identified);
   // One realization: the 95 % intervals contain the truth (a fixed seed; the coverage
@@ -63,16 +63,16 @@ TEST(AxisAnalysis, WhitePlusRandomWalkIsRecoveredWithIntervalsAroundTheTruth) {
   EXPECT_LT(n.ci_high / n.ci_low, 1.1);
   EXPECT_NE(n.interval_method.find("bootstrap"), std::string::npos);
   // Absent terms: not identified, value 0, a finite positive upper bound.
-  for (models::Term term : {models::Term::quantization, models::Term::ramp}) {
+  for (NoiseTerm term : {NoiseTerm::quantization, NoiseTerm::ramp}) {
     const auto& e = a.model.terms[static_cast<std::size_t>(term)];
-    EXPECT_FALSE(e.identified) << models::term_name(term);
+    EXPECT_FALSE(e.identified) << term_name(term);
     EXPECT_EQ(e.value, 0.0);
     EXPECT_GT(e.ci_high, 0.0);  // a real (profile) upper bound, not the "no bound" 0
   }
   // The fitted model passes its own PSD cross-check, and the read-offs exist.
   ASSERT_TRUE(a.model.psd_check_pass.has_value());
   EXPECT_TRUE(*a.model.psd_check_pass) << a.model.psd_check_note;
-  EXPECT_GT(a.model.readoff.slope[static_cast<std::size_t>(models::Term::white_noise)], 0.0);
+  EXPECT_GT(a.model.readoff.slope[static_cast<std::size_t>(NoiseTerm::white_noise)], 0.0);
   EXPECT_FALSE(a.ohdev.points.empty());
 }
 
@@ -83,7 +83,7 @@ TEST(AxisAnalysis, BiasInstabilityGetsEveryGaussMarkovConvention) {
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;  // least-squares intervals: fast path
   const AxisAnalysis a = analyze_axis("gyro_y", true, rate, 0.05, 1, options);
-  const auto& b = a.model.terms[static_cast<std::size_t>(models::Term::bias_instability)];
+  const auto& b = a.model.terms[static_cast<std::size_t>(NoiseTerm::bias_instability)];
   ASSERT_TRUE(b.identified);
   EXPECT_NEAR(b.value / truth.bias_instability, 1.0, 0.3);
   EXPECT_NE(b.interval_method.find("least squares"), std::string::npos);
@@ -156,8 +156,7 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   options.bootstrap_replicates = 0;
   const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
   const std::vector<analysis::FitPoint> points = analysis::fit_points(a.oadev);
-  const double bound =
-      analysis::profile_upper_bound(points, a.fit, analysis::NoiseTerm::ramp, 0.95);
+  const double bound = analysis::profile_upper_bound(points, a.fit, NoiseTerm::ramp, 0.95);
   ASSERT_TRUE(std::isfinite(bound));
   EXPECT_GT(bound, 0.0);
   // A ramp of the bound's size adds R²τ²/2 at the longest τ: at most the width of that point's

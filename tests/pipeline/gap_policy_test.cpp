@@ -146,7 +146,7 @@ TEST(GapPolicy, SplitRecoversWhiteNoiseWithinItsStatisticalTolerance) {
   const AxisAnalysis a = analyze_axis_pieces("gyro_x", true, pieces, tau0, 0, options);
   ASSERT_FALSE(a.oadev.points.empty());
   EXPECT_EQ(a.oadev.piece_n_phase.size(), 4u);
-  const auto& nn = a.model.terms[static_cast<std::size_t>(models::Term::white_noise)];
+  const auto& nn = a.model.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
   ASSERT_TRUE(nn.identified);
   // σ̂ at m = 1 has relative SD 1/√(2ν) (χ²_ν, theory.md §3.1); the fit of a white record is
   // dominated by that point. Four of those, and the truth inside the fit's own interval.
@@ -213,7 +213,7 @@ TEST(AxisEdgeCases, ValuesNearTheFloatLimitsGiveAResultOrAClearError) {
     for (double& v : y) v *= scale;
     const AxisAnalysis a = analyze_axis("gyro_x", true, y, 0.01, 0, options);
     expect_finite_model(a.model);
-    const double n = a.model.terms[static_cast<std::size_t>(models::Term::white_noise)].value;
+    const double n = a.model.terms[static_cast<std::size_t>(NoiseTerm::white_noise)].value;
     EXPECT_NEAR(n / (scale * std::sqrt(0.01)), 1.0, 0.05) << scale;
   }
   // Beyond: refused with the reason, never Inf/NaN in a result.
@@ -243,7 +243,7 @@ TEST(AxisEdgeCases, HugeConstantBiasGivesTheCoefficientsOfTheNoiseAlone) {
   for (std::size_t i = 0; i < a.oadev.points.size(); ++i) {
     EXPECT_NEAR(b.oadev.points[i].value / a.oadev.points[i].value, 1.0, 1e-6) << i;
   }
-  const std::size_t w = static_cast<std::size_t>(models::Term::white_noise);
+  const std::size_t w = static_cast<std::size_t>(NoiseTerm::white_noise);
   EXPECT_NEAR(b.model.terms[w].value / a.model.terms[w].value, 1.0, 1e-6);
 }
 

@@ -45,7 +45,7 @@ TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
   ASSERT_EQ(model.axes.size(), 6u);
   const models::AxisModel* gx = model.find_axis("gyro_x");
   ASSERT_NE(gx, nullptr);
-  const auto& n = gx->terms[static_cast<std::size_t>(models::Term::white_noise)];
+  const auto& n = gx->terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
   EXPECT_TRUE(n.identified);
   EXPECT_LE(n.ci_low, 1.16355e-4);
   EXPECT_GE(n.ci_high, 1.16355e-4);

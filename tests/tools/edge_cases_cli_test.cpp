@@ -163,7 +163,7 @@ TEST(EdgeCasesCli, SplitPoolsTheGapFreePiecesAndRecoversTheNoise) {
   const models::NoiseModel model = io::load_model_yaml((out / "model.yaml").string());
   EXPECT_EQ(model.samples, 20000 - 53 - 40 - 60);
   for (const models::AxisModel& axis : model.axes) {
-    const auto& n = axis.terms[static_cast<std::size_t>(models::Term::white_noise)];
+    const auto& n = axis.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
     ASSERT_TRUE(n.identified) << axis.name;
     // ~19800 samples: σ̂ at m = 1 has relative SD 1/√(2ν), ν ≈ 0.78·19800 → 0.57 %; 4× that.
     EXPECT_NEAR(n.value / kArw, 1.0, 0.025) << axis.name;

@@ -29,7 +29,7 @@
 namespace {
 
 using imunoise::NoiseCoefficients;
-using imunoise::models::Term;
+using imunoise::NoiseTerm;
 
 struct Scenario {
   const char* name;
@@ -41,9 +41,9 @@ struct Scenario {
 /// quantization level follows the rate so that 3Q²/τ² crosses N²/τ at τ = 4·τ0 at any rate.
 std::vector<Scenario> scenarios(double rate_hz) {
   namespace u = imunoise::units;
-  const double n = 0.4 * u::kDegPerSqrtHour;       // 1.16355e-4 rad/√s
-  const double b = 0.007 * u::kDeg;                // 1.22173e-4 rad/s
-  const double k = 3.9e-4 * u::kDeg;               // 6.80678e-6 rad/s^1.5
+  const double n = 0.4 * u::kDegPerSqrtHour;  // 1.16355e-4 rad/√s
+  const double b = 0.007 * u::kDeg;           // 1.22173e-4 rad/s
+  const double k = 3.9e-4 * u::kDeg;          // 6.80678e-6 rad/s^1.5
   std::vector<Scenario> out;
   {
     Scenario s{"white+rw", {}};
@@ -114,7 +114,8 @@ double stddev(const std::vector<double>& v) {
 }
 
 bool run_scenario(const Scenario& scenario, const Settings& settings) {
-  const auto n_samples = static_cast<std::int64_t>(std::llround(settings.duration_s * settings.rate_hz));
+  const auto n_samples =
+      static_cast<std::int64_t>(std::llround(settings.duration_s * settings.rate_hz));
   const double tau0 = 1.0 / settings.rate_hz;
   std::vector<Outcome> outcomes(static_cast<std::size_t>(settings.realizations));
   std::atomic<int> next{0};
@@ -131,11 +132,13 @@ bool run_scenario(const Scenario& scenario, const Settings& settings) {
       imunoise::pipeline::AxisAnalysisOptions options;
       options.bootstrap_replicates = settings.bootstrap;
       options.seed = 104729ULL + static_cast<std::uint64_t>(r);
-      options.fit.gauss_markov = scenario.gauss_markov_fit ? imunoise::analysis::GaussMarkovMode::on
-                                                           : imunoise::analysis::GaussMarkovMode::off;
+      options.fit.gauss_markov = scenario.gauss_markov_fit
+                                     ? imunoise::analysis::GaussMarkovMode::on
+                                     : imunoise::analysis::GaussMarkovMode::off;
       Outcome& out = outcomes[static_cast<std::size_t>(r)];
       try {
-        const auto result = imunoise::pipeline::analyze_axis("gyro_x", true, rate, tau0, 0, options);
+        const auto result =
+            imunoise::pipeline::analyze_axis("gyro_x", true, rate, tau0, 0, options);
         out.terms = result.model.terms;
         out.slope = result.model.readoff.slope;
         out.gm = result.model.gauss_markov;
@@ -163,8 +166,8 @@ bool run_scenario(const Scenario& scenario, const Settings& settings) {
   std::printf("\n== %s: %d realizations (%d analysed), %.0f s at %g Hz, bootstrap %d ==\n",
               scenario.name, settings.realizations, ok, settings.duration_s, settings.rate_hz,
               settings.bootstrap);
-  std::printf("  %-17s %10s %9s %9s %9s %9s %11s %11s %11s\n", "term", "true", "coverage",
-              "ident.", "med|err|", "fit bias", "fit spread", "slope bias", "slope spr.");
+  std::printf("  %-17s %10s %9s %9s %9s %9s %11s %11s %11s\n", "term", "true", "coverage", "ident.",
+              "med|err|", "fit bias", "fit spread", "slope bias", "slope spr.");
   bool pass = true;
   const auto check_coverage = [&](const char* what, int inside, int total) {
     if (!settings.check || total == 0) return;
@@ -177,9 +180,9 @@ bool run_scenario(const Scenario& scenario, const Settings& settings) {
       pass = false;
     }
   };
-  for (Term term : imunoise::models::kTerms) {
+  for (NoiseTerm term : imunoise::kNoiseTerms) {
     const auto t = static_cast<std::size_t>(term);
-    const double truth = imunoise::models::coefficient(scenario.truth, term);
+    const double truth = imunoise::coefficient(scenario.truth, term);
     int inside = 0, identified = 0;
     std::vector<double> rel_fit, rel_slope, abs_err;
     for (const Outcome& o : outcomes) {
@@ -195,14 +198,13 @@ bool run_scenario(const Scenario& scenario, const Settings& settings) {
     }
     if (truth > 0.0) {
       std::printf("  %-17s %10.4g %9.3f %5d/%-3d %9.4f %9.4f %11.4f %11.4f %11.4f (n=%zu)\n",
-                  std::string(imunoise::models::term_name(term)).c_str(), truth,
-                  static_cast<double>(inside) / ok, identified, ok, median(abs_err),
-                  mean(rel_fit), stddev(rel_fit), mean(rel_slope), stddev(rel_slope),
-                  rel_slope.size());
-      check_coverage(std::string(imunoise::models::term_name(term)).c_str(), inside, ok);
+                  std::string(imunoise::term_name(term)).c_str(), truth,
+                  static_cast<double>(inside) / ok, identified, ok, median(abs_err), mean(rel_fit),
+                  stddev(rel_fit), mean(rel_slope), stddev(rel_slope), rel_slope.size());
+      check_coverage(std::string(imunoise::term_name(term)).c_str(), inside, ok);
     } else {
       std::printf("  %-17s %10s %9.3f %5d/%-3d  (absent: coverage = upper bound ≥ 0 holds)\n",
-                  std::string(imunoise::models::term_name(term)).c_str(), "0",
+                  std::string(imunoise::term_name(term)).c_str(), "0",
                   static_cast<double>(inside) / ok, identified, ok);
     }
   }
