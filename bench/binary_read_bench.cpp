@@ -17,7 +17,7 @@
 
 #include "common/huge_pages.h"
 #include "io/binary_recording.h"
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace {
 
@@ -28,7 +28,7 @@ const std::string& bench_imnb() {
   static const std::string path = [] {
     const std::string p =
         (std::filesystem::temp_directory_path() / "imunoise_bench_8h_400hz.imnb").string();
-    imunoise::io::Recording rec;
+    imunoise::pipeline::Recording rec;
     rec.source_path = "bench";
     rec.sample_period_s = 1.0 / 400.0;
     std::mt19937_64 rng(7);  // fixed seed: the same file every run
@@ -40,7 +40,7 @@ const std::string& bench_imnb() {
     rec.time_s[0] = 0.0;
     const char* names[] = {"gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"};
     for (std::size_t c = 0; c < 6; ++c) {
-      imunoise::io::Channel ch;
+      imunoise::pipeline::Channel ch;
       ch.name = names[c];
       ch.unit = c < 3 ? "rad/s" : "m/s^2";
       ch.values.resize(kSamples);

@@ -88,26 +88,26 @@ void BM_StreamFloor(benchmark::State& state) {
 }
 
 void BM_AnalyzeChannelNoise(benchmark::State& state) {
-  const imunoise::io::ChannelSamples channel{"gyro_x", "rad/s", noise_channel(), 0.5};
-  for (auto _ : state) benchmark::DoNotOptimize(imunoise::io::analyze_channel(channel));
+  const imunoise::pipeline::ChannelSamples channel{"gyro_x", "rad/s", noise_channel(), 0.5};
+  for (auto _ : state) benchmark::DoNotOptimize(imunoise::pipeline::analyze_channel(channel));
   set_bytes(state);
 }
 
 void BM_AnalyzeChannelQuantized(benchmark::State& state) {
-  const imunoise::io::ChannelSamples channel{"gyro_x", "rad/s", quantized_channel(), 0.5};
-  for (auto _ : state) benchmark::DoNotOptimize(imunoise::io::analyze_channel(channel));
+  const imunoise::pipeline::ChannelSamples channel{"gyro_x", "rad/s", quantized_channel(), 0.5};
+  for (auto _ : state) benchmark::DoNotOptimize(imunoise::pipeline::analyze_channel(channel));
   set_bytes(state);
 }
 
 void BM_EstimateLsbQuantized(benchmark::State& state) {
   const auto& x = quantized_channel();
-  for (auto _ : state) benchmark::DoNotOptimize(imunoise::io::estimate_lsb(x));
+  for (auto _ : state) benchmark::DoNotOptimize(imunoise::pipeline::estimate_lsb(x));
   set_bytes(state);
 }
 
 void BM_AnalyzeTiming(benchmark::State& state) {
   const auto& t = stamps();
-  for (auto _ : state) benchmark::DoNotOptimize(imunoise::io::analyze_timing(t));
+  for (auto _ : state) benchmark::DoNotOptimize(imunoise::pipeline::analyze_timing(t));
   set_bytes(state);
 }
 

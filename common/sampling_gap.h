@@ -1,7 +1,7 @@
 /// @file
-/// @brief The one definition of how many samples a time-stamp gap lacks, shared by the sampling
-/// report (io) and the gap policy (pipeline), so that both count the same and both stay
-/// defined on absurd stamps.
+/// @brief The one definition of what a time-stamp gap is and how many samples it lacks, shared by
+/// the sampling report (io) and the gap policy (pipeline), so that both count the same and both
+/// stay defined on absurd stamps.
 #pragma once
 
 #include <cmath>
@@ -9,6 +9,11 @@
 #include <limits>
 
 namespace imunoise {
+
+/// An interval longer than kGapFactor × the median (nominal) interval is a time-stamp gap: the
+/// one criterion of the sampling report, the gap policy, the live node and every text that
+/// states it.
+inline constexpr double kGapFactor = 1.5;
 
 /// Samples an interval of INTERVAL_S lacks at the nominal period PERIOD_S: round(interval /
 /// period) − 1, at least 0. Saturates at INT64_MAX: with absurd stamps the ratio can be beyond

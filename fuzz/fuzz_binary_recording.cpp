@@ -30,14 +30,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static fuzz::ScratchFile copy("copy.imnb");
   const std::string& path = file.write(data, size);
   fuzz::expect_only_typed_errors("read_binary_header", [&] { (void)io::read_binary_header(path); });
-  io::Recording rec;
+  pipeline::Recording rec;
   bool ok = false;
   fuzz::expect_only_typed_errors("read_binary_recording", [&] {
     rec = io::read_binary_recording(path);
     ok = true;
   });
   if (!ok) return 0;
-  io::Recording again;
+  pipeline::Recording again;
   fuzz::expect_only_typed_errors("write and read back", [&] {
     io::write_binary_recording(copy.path(), rec);
     again = io::read_binary_recording(copy.path());

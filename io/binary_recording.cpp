@@ -58,8 +58,8 @@ std::string describe_non_finite(double v) { return std::isnan(v) ? "NaN" : "Inf"
 
 /// The SI unit a standard channel must have; nullopt for extra channels.
 std::optional<std::string_view> standard_unit(std::string_view name) {
-  for (std::size_t c = 0; c < kImuChannelNames.size(); ++c) {
-    if (name == kImuChannelNames[c]) return c < 3 ? "rad/s" : "m/s^2";
+  for (std::size_t c = 0; c < pipeline::kImuChannelNames.size(); ++c) {
+    if (name == pipeline::kImuChannelNames[c]) return c < 3 ? "rad/s" : "m/s^2";
   }
   return std::nullopt;
 }
@@ -84,7 +84,7 @@ void validate_header(const BinaryRecordingHeader& h, MakeError&& make_error) {
   if (h.rows_dropped < 0) throw make_error("rows_dropped", "must be >= 0");
   std::set<std::string_view> names;
   for (std::size_t i = 0; i < h.channels.size(); ++i) {
-    const Channel& c = h.channels[i];
+    const pipeline::Channel& c = h.channels[i];
     const std::string where = "channels[" + std::to_string(i) + "]";
     if (c.name.empty()) throw make_error(where + ".name", "must not be empty");
     if (c.name == kTimeColumnName) {
@@ -116,7 +116,7 @@ Json header_json(const BinaryRecordingHeader& h) {
   j["non_finite_dropped"] = h.non_finite_dropped;
   j["rows_dropped"] = h.rows_dropped;
   Json channels = Json::array();
-  for (const Channel& c : h.channels) {
+  for (const pipeline::Channel& c : h.channels) {
     channels.push_back(Json{{"name", c.name},
                             {"unit", c.unit},
                             {"source_column", c.source_column},
@@ -225,7 +225,7 @@ BinaryRecordingHeader parse_header_json(const std::string& path, const std::stri
       throw key_error(path, prefix.substr(0, prefix.size() - 1), "expected an object");
     }
     ObjectReader ch(path, channels[i], prefix);
-    Channel c;
+    pipeline::Channel c;
     c.name = ch.text("name");
     c.unit = ch.text("unit");
     c.source_column = ch.text("source_column");
@@ -382,7 +382,7 @@ std::optional<BinaryLayout> binary_layout(std::uint64_t header_bytes, std::uint6
   return layout;
 }
 
-BinaryRecordingHeader binary_header_of(const Recording& recording) {
+BinaryRecordingHeader binary_header_of(const pipeline::Recording& recording) {
   BinaryRecordingHeader h;
   h.source_path = recording.source_path;
   h.created_by = std::string(kBinaryCreatedBy);
@@ -396,9 +396,9 @@ BinaryRecordingHeader binary_header_of(const Recording& recording) {
   h.sample_count = recording.sample_count();
   h.non_finite_dropped = recording.report.non_finite_dropped;
   h.rows_dropped = recording.report.rows_dropped;
-  for (const Channel& c : recording.channels) {
+  for (const pipeline::Channel& c : recording.channels) {
     h.channels.push_back(
-        Channel{c.name, c.unit, {}, c.source_column, c.source_unit, c.from_increments});
+        pipeline::Channel{c.name, c.unit, {}, c.source_column, c.source_unit, c.from_increments});
   }
   return h;
 }
@@ -503,9 +503,9 @@ void BinaryRecordingWriter::commit() {
   w.file.commit();
 }
 
-void write_binary_recording(const std::string& path, const Recording& recording) {
+void write_binary_recording(const std::string& path, const pipeline::Recording& recording) {
   const std::size_t n = recording.sample_count();
-  for (const Channel& c : recording.channels) {
+  for (const pipeline::Channel& c : recording.channels) {
     if (c.values.size() != n) {
       throw InputError(path + ": cannot write a binary recording: channel '" + c.name + "' has " +
                        std::to_string(c.values.size()) + " samples, the first channel " +
@@ -520,7 +520,7 @@ void write_binary_recording(const std::string& path, const Recording& recording)
   BinaryRecordingWriter writer(path, binary_header_of(recording));
   std::size_t column = 0;
   if (!recording.time_s.empty()) writer.append(column++, recording.time_s);
-  for (const Channel& c : recording.channels) writer.append(column++, c.values);
+  for (const pipeline::Channel& c : recording.channels) writer.append(column++, c.values);
   writer.commit();
 }
 
@@ -541,8 +541,8 @@ BinaryRecordingHeader read_binary_header(const std::string& path) {
   return read_and_check_header(path, fd.get()).header;
 }
 
-Recording read_binary_recording(const std::string& path, const BinaryReadOptions& options,
-                                const ProgressCallback& progress) {
+pipeline::Recording read_binary_recording(const std::string& path, const BinaryReadOptions& options,
+                                          const ProgressCallback& progress) {
   const FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
   if (fd.get() < 0) {
     throw InputError(path + ": cannot open (" + std::string(std::strerror(errno)) + ")");
@@ -593,7 +593,7 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
     copied += layout.column_stride;
   };
 
-  Recording rec;
+  pipeline::Recording rec;
   rec.source_path = path;
   rec.sample_period_s = h.sample_period_s;
   rec.start_time_s = h.start_time_s;
@@ -616,7 +616,7 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
                                "stamp goes in start_time_s)");
             }
           } else {
-            Channel& c = rec.channels[column - time_columns];
+            pipeline::Channel& c = rec.channels[column - time_columns];
             read_column(column, "channel '" + c.name + "'", c.values);
           }
         } catch (...) {
@@ -635,17 +635,17 @@ Recording read_binary_recording(const std::string& path, const BinaryReadOptions
 
   // Sampling report exactly as io::read_recording builds it; the timing checks run beside
   // the channel checks (one item each, so the result does not depend on the thread count).
-  const SamplingOptions sampling;
-  TimingReport timing;
-  const std::vector<ChannelSamples> checks = channel_checks(
+  const pipeline::SamplingOptions sampling;
+  pipeline::TimingReport timing;
+  const std::vector<pipeline::ChannelSamples> checks = pipeline::channel_checks(
       rec.channels, options.gyro_full_scale_rad_per_s, options.accel_full_scale_m_per_s2);
   rec.report.channels.resize(checks.size());
   parallel_for(checks.size() + 1, options.threads, [&](std::size_t item) {
     if (item == 0) {
-      timing = h.has_time ? analyze_timing(rec.time_s, sampling)
-                          : fixed_rate_timing(*h.rate_hz, static_cast<std::int64_t>(n));
+      timing = h.has_time ? pipeline::analyze_timing(rec.time_s, sampling)
+                          : pipeline::fixed_rate_timing(*h.rate_hz, static_cast<std::int64_t>(n));
     } else {
-      rec.report.channels[item - 1] = analyze_channel(checks[item - 1], sampling);
+      rec.report.channels[item - 1] = pipeline::analyze_channel(checks[item - 1], sampling);
     }
   });
   if (h.has_time && n >= 2 && !(timing.median_interval_s > 0.0)) {

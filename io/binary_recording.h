@@ -18,7 +18,7 @@
 
 #include "common/progress.h"
 #include "common/version.h"
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace imunoise::io {
 
@@ -49,17 +49,18 @@ struct BinaryRecordingHeader {
   std::optional<double> rate_hz;  ///< the given fixed rate [Hz]; present iff !has_time
   double start_time_s = 0.0;      ///< first time stamp as written in the source [s]
   std::uint64_t sample_count = 0;
-  bool has_time = false;                ///< a time_s column precedes the channels
-  std::vector<Channel> channels;        ///< names, units and provenance; `values` left empty
-  std::int64_t non_finite_dropped = 0;  ///< as SamplingReport (carried over from the source)
-  std::int64_t rows_dropped = 0;        ///< as SamplingReport
+  bool has_time = false;                    ///< a time_s column precedes the channels
+  std::vector<pipeline::Channel> channels;  ///< names, units and provenance; `values` left empty
+  std::int64_t non_finite_dropped =
+      0;                          ///< as pipeline::SamplingReport (carried over from the source)
+  std::int64_t rows_dropped = 0;  ///< as pipeline::SamplingReport
 
   /// Float64 columns in the data section: the channels plus time_s when present.
   std::size_t column_count() const { return channels.size() + (has_time ? 1 : 0); }
 };
 
 /// The header describing `recording` (created_by = kBinaryCreatedBy).
-BinaryRecordingHeader binary_header_of(const Recording& recording);
+BinaryRecordingHeader binary_header_of(const pipeline::Recording& recording);
 
 /// File offsets of the data section, computed overflow-safely from a header; nullopt when the
 /// sizes do not fit in 64 bits.
@@ -100,7 +101,7 @@ class BinaryRecordingWriter {
 /// Writes RECORDING (all fields, time_s when not empty) to PATH atomically. Throws InputError
 /// naming PATH for no channels, channels of different lengths, an invalid name or unit, a
 /// non-finite value, or a write failure (no file is left behind).
-void write_binary_recording(const std::string& path, const Recording& recording);
+void write_binary_recording(const std::string& path, const pipeline::Recording& recording);
 
 /// True when PATH starts with kBinaryMagic.
 bool is_binary_recording_file(const std::string& path);
@@ -130,7 +131,8 @@ struct BinaryReadOptions {
 /// fixed rate. Sample locations have no file line. `source_path` of the result is PATH. PROGRESS
 /// (optional) gets
 /// ("reading", bytes copied, data bytes).
-Recording read_binary_recording(const std::string& path, const BinaryReadOptions& options = {},
-                                const ProgressCallback& progress = {});
+pipeline::Recording read_binary_recording(const std::string& path,
+                                          const BinaryReadOptions& options = {},
+                                          const ProgressCallback& progress = {});
 
 }  // namespace imunoise::io

@@ -1438,8 +1438,8 @@ std::optional<GroupMapping<Unit>> map_group(
 
 }  // namespace
 
-Recording read_recording(const std::string& path, const InputConfig& config,
-                         const ProgressCallback& progress, unsigned threads) {
+pipeline::Recording read_recording(const std::string& path, const InputConfig& config,
+                                   const ProgressCallback& progress, unsigned threads) {
   TableReader reader(path, config.delimiter.value_or(Delimiter::kAuto));
   const TableLayout& layout = reader.layout();
 
@@ -1518,18 +1518,18 @@ Recording read_recording(const std::string& path, const InputConfig& config,
                                ReadParallelism{.threads = threads});
   const std::size_t n = data.columns.front().size();
 
-  Recording rec;
+  pipeline::Recording rec;
   rec.source_path = path;
-  SamplingOptions options;
+  pipeline::SamplingOptions options;
   options.line_of_sample = [&data](std::size_t i) { return data.lines.line_of(i); };
-  TimingReport timing;
+  pipeline::TimingReport timing;
   if (time_column) {
-    require_min_samples(path, n, 2, "a sample rate from time stamps");
+    pipeline::require_min_samples(path, n, 2, "a sample rate from time stamps");
     const double factor = si_factor(time_unit);
     rec.time_s = std::move(data.columns[0]);
     for (double& t : rec.time_s) t *= factor;
     rec.start_time_s = data.first_values[0] * factor;
-    timing = analyze_timing(rec.time_s, options);
+    timing = pipeline::analyze_timing(rec.time_s, options);
     if (!(timing.median_interval_s > 0.0)) {
       throw InputError(located_message(path, data.first_data_line, 0,
                                        "cannot estimate the sample rate: the time stamps never "
@@ -1538,14 +1538,14 @@ Recording read_recording(const std::string& path, const InputConfig& config,
     rec.sample_period_s = timing.median_interval_s;
   } else {
     rec.sample_period_s = 1.0 / *config.rate_hz;
-    timing = fixed_rate_timing(*config.rate_hz, static_cast<std::int64_t>(n));
+    timing = pipeline::fixed_rate_timing(*config.rate_hz, static_cast<std::int64_t>(n));
   }
 
   std::size_t next = first_channel_request;
   const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
                                double factor, bool increments) {
     const std::size_t column = requests[next].index;
-    Channel ch;
+    pipeline::Channel ch;
     ch.name = std::move(name);
     ch.unit = std::move(unit);
     ch.source_unit = std::move(source_unit);
@@ -1582,8 +1582,8 @@ Recording read_recording(const std::string& path, const InputConfig& config,
   rec.report.timing = timing;
   rec.report.non_finite_dropped = data.non_finite_dropped;
   rec.report.rows_dropped = data.rows_dropped;
-  rec.report.channels = check_channels(rec.channels, config.gyro_full_scale_rad_per_s,
-                                       config.accel_full_scale_m_per_s2, options);
+  rec.report.channels = pipeline::check_channels(rec.channels, config.gyro_full_scale_rad_per_s,
+                                                 config.accel_full_scale_m_per_s2, options);
   return rec;
 }
 

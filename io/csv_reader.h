@@ -22,7 +22,7 @@
 
 #include "common/progress.h"
 #include "io/input_config.h"
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace imunoise::io {
 
@@ -148,7 +148,7 @@ Series read_series(const std::string& path, const SeriesReadOptions& options);
 /// Fills the sampling report; non-monotonic time stamps are reported, not fatal. PROGRESS
 /// (optional) follows the bytes read, as in TableReader::read. THREADS parse large files
 /// (ReadParallelism::threads; 0 = hardware concurrency); the result does not depend on it.
-Recording read_recording(const std::string& path, const InputConfig& config,
-                         const ProgressCallback& progress = {}, unsigned threads = 0);
+pipeline::Recording read_recording(const std::string& path, const InputConfig& config,
+                                   const ProgressCallback& progress = {}, unsigned threads = 0);
 
 }  // namespace imunoise::io

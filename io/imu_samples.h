@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace imunoise::io {
 
@@ -37,7 +37,8 @@ struct ImuSampleColumns {
 /// accel_z (+ "temperature" when present) with source_column "CHANNEL.FIELD", and the sampling
 /// report. Non-monotonic stamps are reported, not fatal. Throws InputError (naming
 /// `source_path`) for fewer than 2 samples or stamps that never increase.
-Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string& source_path,
-                                     const std::string& channel);
+pipeline::Recording recording_from_imu_samples(ImuSampleColumns samples,
+                                               const std::string& source_path,
+                                               const std::string& channel);
 
 }  // namespace imunoise::io

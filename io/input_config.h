@@ -49,7 +49,7 @@ bool is_increment(AccelUnit u);
 
 /// A column read as-is into a channel of its own (temperature, counters, …).
 struct ExtraColumn {
-  std::string name;    ///< channel name in the Recording
+  std::string name;    ///< channel name in the pipeline::Recording
   std::string column;  ///< header name or 1-based index
 };
 

@@ -255,8 +255,8 @@ void read_channel(const std::string& path, const std::string& channel, std::uint
 
 /// read_lcm_imu_log for a user's own message type (options.user_type): the same scan, the
 /// messages decoded by LcmUserImuDecoder.
-Recording read_user_type_log(const std::string& path, const std::string& channel,
-                             const LcmReadOptions& options) {
+pipeline::Recording read_user_type_log(const std::string& path, const std::string& channel,
+                                       const LcmReadOptions& options) {
   LcmUserImuDecoder decoder(*options.user_type);
   const std::string expected = decoder.type_name() + " (fingerprint " +
                                lcm_fingerprint_text(decoder.fingerprint()) + ", from " +
@@ -307,8 +307,8 @@ std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path) {
   return tally.take();
 }
 
-Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
-                           const LcmReadOptions& options) {
+pipeline::Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
+                                     const LcmReadOptions& options) {
   if (options.user_type) return read_user_type_log(path, channel, options);
   using imunoise::imu_sample_t;
   const auto fingerprint = static_cast<std::uint64_t>(imu_sample_t::getHash());

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "io/lcm_type_definition.h"
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace imunoise::io {
 
@@ -71,7 +71,7 @@ struct LcmReadOptions {
 /// and six values from the mapped fields, scaled to SI; increments divided by the period); a
 /// bad definition or mapping, another type on the channel (both fingerprints named) or a
 /// message that does not decode is an InputError.
-Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
-                           const LcmReadOptions& options = {});
+pipeline::Recording read_lcm_imu_log(const std::string& path, const std::string& channel,
+                                     const LcmReadOptions& options = {});
 
 }  // namespace imunoise::io

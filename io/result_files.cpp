@@ -10,7 +10,7 @@
 
 #include "common/errors.h"
 #include "common/units.h"
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace imunoise::io {
 
@@ -108,7 +108,7 @@ std::vector<DeviationSeries> read_allan_csv(const std::string& path, double conf
   const NumericTable t = read_numeric_table(path);
   const std::size_t tau = require_column(t, path, "tau_s", "an allan.csv");
   std::vector<DeviationSeries> out;
-  for (const char* axis : kImuChannelNames) {
+  for (const char* axis : pipeline::kImuChannelNames) {
     const bool gyro = std::string(axis).rfind("gyro", 0) == 0;
     const std::string unit_suffix = gyro ? "rad_per_s" : "m_per_s2";
     for (const char* statistic : {"oadev", "ohdev"}) {
@@ -143,7 +143,7 @@ std::vector<PsdSeries> read_psd_csv(const std::string& path) {
   const NumericTable t = read_numeric_table(path);
   const std::size_t frequency = require_column(t, path, "frequency_hz", "a psd.csv");
   std::vector<PsdSeries> out;
-  for (const char* axis : kImuChannelNames) {
+  for (const char* axis : pipeline::kImuChannelNames) {
     const bool gyro = std::string(axis).rfind("gyro", 0) == 0;
     const std::string unit_suffix = gyro ? "rad2_per_s2_per_hz" : "m2_per_s4_per_hz";
     const auto value = t.find(std::string(axis) + "_psd_" + unit_suffix);

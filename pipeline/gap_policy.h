@@ -33,8 +33,8 @@ struct TimeGap {
   std::int64_t missing = 0;  ///< samples it lacks: missing_samples_in_gap (saturating)
 };
 
-/// Every gap of TIME_S (not only the first io::kMaxListedGaps the sampling report lists),
-/// with the criterion of io::analyze_timing: interval > gap_factor × period_s. Intervals
+/// Every gap of TIME_S (not only the first pipeline::kMaxListedGaps the sampling report lists),
+/// with the criterion of pipeline::analyze_timing: interval > gap_factor × period_s. Intervals
 /// ≤ 0 (duplicate or disordered stamps) are not gaps. Throws InputError when period_s ≤ 0.
 std::vector<TimeGap> find_time_gaps(std::span<const double> time_s, double period_s,
                                     double gap_factor = 1.5);

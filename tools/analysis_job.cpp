@@ -185,9 +185,9 @@ std::string psd_plan_text(const AnalysisResult& result) {
   return text;
 }
 
-std::vector<std::string> quality_findings(const io::SamplingReport& report) {
+std::vector<std::string> quality_findings(const pipeline::SamplingReport& report) {
   std::vector<std::string> out;
-  const io::TimingReport& t = report.timing;
+  const pipeline::TimingReport& t = report.timing;
   if (t.gap_count > 0) {
     out.push_back(std::to_string(t.gap_count) + " time-stamp gap(s), longest " +
                   significant_number_text(t.longest_gap_s) + " s, about " +
@@ -208,7 +208,7 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   if (report.rows_dropped > 0) {
     out.push_back(std::to_string(report.rows_dropped) + " row(s) with NaN/Inf dropped");
   }
-  for (const io::ChannelReport& c : report.channels) {
+  for (const pipeline::ChannelReport& c : report.channels) {
     if (c.saturated_samples > 0) {
       out.push_back(c.name + ": " + std::to_string(c.saturated_samples) +
                     " samples in saturation runs at the range limits");
@@ -224,7 +224,7 @@ std::vector<std::string> quality_findings(const io::SamplingReport& report) {
   return out;
 }
 
-std::string gap_refusal_message(const std::string& source, const io::TimingReport& timing) {
+std::string gap_refusal_message(const std::string& source, const pipeline::TimingReport& timing) {
   if (timing.gap_count <= 0) return {};
   std::string what = std::to_string(timing.gap_count) + " time-stamp gap(s)";
   if (timing.first_gap) {
@@ -263,13 +263,13 @@ struct GapPlan {
 
 /// Applies the policy to the recording's gaps: refuses (InputError), or plans the split or
 /// the interpolation and words the data-quality line.
-GapPlan plan_gaps(const io::Recording& recording, const std::string& source,
+GapPlan plan_gaps(const pipeline::Recording& recording, const std::string& source,
                   pipeline::GapPolicy policy, bool bootstrap) {
   GapPlan plan;
   plan.policy = policy;
   const std::size_t n = recording.sample_count();
   plan.samples = static_cast<std::int64_t>(n);
-  const io::TimingReport& timing = recording.report.timing;
+  const pipeline::TimingReport& timing = recording.report.timing;
   if (timing.gap_count <= 0 || recording.time_s.size() != n || !(timing.median_interval_s > 0.0)) {
     return plan;
   }
@@ -336,7 +336,7 @@ namespace {
 
 /// analyze_recording; when RELEASE is given (it is RECORDING's time_s), the time stamps are
 /// freed as soon as the gaps are planned: nothing after the plan reads them.
-AnalysisResult analyze(const io::Recording& recording, const std::string& source,
+AnalysisResult analyze(const pipeline::Recording& recording, const std::string& source,
                        const AnalysisSettings& settings, const AnalysisFeedback& feedback,
                        std::vector<double>* release) {
   const double tau0_s = recording.sample_period_s;
@@ -346,9 +346,9 @@ AnalysisResult analyze(const io::Recording& recording, const std::string& source
     throw InputError(source + ": no usable sample period (" + shortest_number_text(tau0_s) +
                      " s): give the rate or a time column that increases");
   }
-  std::vector<std::pair<std::size_t, const io::Channel*>> channels;
-  for (std::size_t c = 0; c < io::kImuChannelNames.size(); ++c) {
-    if (const io::Channel* channel = recording.find_channel(io::kImuChannelNames[c])) {
+  std::vector<std::pair<std::size_t, const pipeline::Channel*>> channels;
+  for (std::size_t c = 0; c < pipeline::kImuChannelNames.size(); ++c) {
+    if (const pipeline::Channel* channel = recording.find_channel(pipeline::kImuChannelNames[c])) {
       channels.emplace_back(c, channel);
     }
   }
@@ -437,13 +437,13 @@ AnalysisResult analyze(const io::Recording& recording, const std::string& source
 
 }  // namespace
 
-AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
+AnalysisResult analyze_recording(const pipeline::Recording& recording, const std::string& source,
                                  const AnalysisSettings& settings,
                                  const AnalysisFeedback& feedback) {
   return analyze(recording, source, settings, feedback, nullptr);
 }
 
-AnalysisResult analyze_recording_freeing_time_stamps(io::Recording& recording,
+AnalysisResult analyze_recording_freeing_time_stamps(pipeline::Recording& recording,
                                                      const std::string& source,
                                                      const AnalysisSettings& settings,
                                                      const AnalysisFeedback& feedback) {

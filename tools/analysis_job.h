@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "io/recording.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
+#include "pipeline/recording.h"
 
 namespace CLI {
 class App;
@@ -67,14 +67,14 @@ struct AnalysisFeedback {
 /// (gaps longer than pipeline::max_interpolated_gap refused) — either way said in
 /// model.data_quality. Throws InputError for bad settings (naming the flag) or a recording
 /// without IMU channels, AnalysisError when the data cannot give a fit.
-AnalysisResult analyze_recording(const io::Recording& recording, const std::string& source,
+AnalysisResult analyze_recording(const pipeline::Recording& recording, const std::string& source,
                                  const AnalysisSettings& settings,
                                  const AnalysisFeedback& feedback = {});
 
 /// analyze_recording for a caller that needs no time stamps afterwards: RECORDING.time_s is
 /// freed (left empty) as soon as the gaps are planned, which lowers the peak memory by one
 /// column (0.7 GB for 24 h at 1 kHz). Everything else in RECORDING is unchanged.
-AnalysisResult analyze_recording_freeing_time_stamps(io::Recording& recording,
+AnalysisResult analyze_recording_freeing_time_stamps(pipeline::Recording& recording,
                                                      const std::string& source,
                                                      const AnalysisSettings& settings,
                                                      const AnalysisFeedback& feedback = {});
@@ -92,11 +92,11 @@ std::string import_fftw_wisdom_option(const AnalysisSettings& settings);
 std::string psd_plan_text(const AnalysisResult& result);
 
 /// Data-quality findings of a sampling report, one line each (empty = nothing to say).
-std::vector<std::string> quality_findings(const io::SamplingReport& report);
+std::vector<std::string> quality_findings(const pipeline::SamplingReport& report);
 
 /// The one-line refusal of a recording with time-stamp gaps under `--gaps refuse`: SOURCE
 /// (with the line of the first gap when known), the number of gaps, where the first is, the
 /// longest, the samples missing, and the two flags that go on. Empty when there is no gap.
-std::string gap_refusal_message(const std::string& source, const io::TimingReport& timing);
+std::string gap_refusal_message(const std::string& source, const pipeline::TimingReport& timing);
 
 }  // namespace imunoise::tools

@@ -66,13 +66,14 @@ io::Series recording_series(const AllanArgs& args, const io::SeriesReadOptions& 
                             bool lcm_log) {
   io::InputConfig config;
   config.drop_non_finite = read_options.drop_non_finite;
-  io::Recording recording = read_input_recording(args.file, config, args.lcm);
+  pipeline::Recording recording = read_input_recording(args.file, config, args.lcm);
   std::string names;
-  for (const io::Channel& c : recording.channels) names += (names.empty() ? "" : ", ") + c.name;
+  for (const pipeline::Channel& c : recording.channels)
+    names += (names.empty() ? "" : ", ") + c.name;
   if (args.column.empty()) {
     throw InputError(args.file + ": give --column, one of " + names);
   }
-  const io::Channel* channel = recording.find_channel(args.column);
+  const pipeline::Channel* channel = recording.find_channel(args.column);
   if (channel == nullptr) {
     throw InputError(args.file + ": --column '" + args.column + "' is not a channel of the " +
                      (lcm_log ? "log" : "recording") + " (" + names + ")");
@@ -113,7 +114,7 @@ void run_allan(const AllanArgs& args, StageTimes& times) {
   double tau0_s = args.tau0_s;
   std::string tau0_source = tau0_given ? "--tau0" : "default (no --tau0, no time column)";
   if (!tau0_given && series.time_s.size() >= 2) {
-    const io::TimingReport timing = io::analyze_timing(series.time_s);
+    const pipeline::TimingReport timing = pipeline::analyze_timing(series.time_s);
     if (!(timing.median_interval_s > 0.0)) {
       throw InputError(located_message(
           args.file, 0, 0,

@@ -53,7 +53,7 @@ namespace imunoise::tools {
 
 namespace {
 
-using io::kImuChannelNames;
+using pipeline::kImuChannelNames;
 
 struct AnalyzeArgs {
   std::string file;
@@ -244,7 +244,7 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   std::optional<LcmBus> bus;
   if (args.publish) bus.emplace(args.lcm_url);
 
-  io::Recording recording =
+  pipeline::Recording recording =
       read_input_recording(args.file, config, args.lcm, bar.callback(), args.analysis.threads);
   times.mark("read");
   StageTimes channel_times;

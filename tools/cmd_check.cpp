@@ -32,7 +32,8 @@ void run_check(const CheckArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   StageTimes times;
   ProgressBar bar("check", progress_wanted(args.verbosity));
-  const io::Recording recording = read_input_recording(args.file, config, args.lcm, bar.callback());
+  const pipeline::Recording recording =
+      read_input_recording(args.file, config, args.lcm, bar.callback());
   bar.finish();
   times.mark("read");
   if (args.json) {

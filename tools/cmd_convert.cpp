@@ -82,14 +82,14 @@ OutputFormat output_format(const ConvertArgs& args) {
 
 /// The CSV column of a channel: the standard channels with their SI unit suffix (as `simulate`
 /// writes them, so a default read maps them back), other channels by name.
-std::string csv_column_name(const io::Channel& channel) {
+std::string csv_column_name(const pipeline::Channel& channel) {
   if (channel.unit == "rad/s") return channel.name + "_rad_per_s";
   if (channel.unit == "m/s^2") return channel.name + "_m_per_s2";
   return channel.name;
 }
 
 /// Time of sample I since the first [s]: the stamps, or I / rate for a fixed rate.
-double sample_time_s(const io::Recording& rec, std::size_t i) {
+double sample_time_s(const pipeline::Recording& rec, std::size_t i) {
   if (!rec.time_s.empty()) return rec.time_s[i];
   const double rate =
       rec.report.timing.rate_hz > 0.0 ? rec.report.timing.rate_hz : 1.0 / rec.sample_period_s;
@@ -98,7 +98,7 @@ double sample_time_s(const io::Recording& rec, std::size_t i) {
 
 /// CSV: '#' lines with the provenance, the column line, then rows of shortest round-trip
 /// numbers (std::to_chars), time_s relative to the first sample.
-void write_csv(const io::Recording& rec, const std::string& path) {
+void write_csv(const pipeline::Recording& rec, const std::string& path) {
   io::AtomicOutputFile file(path);
   std::ostream& out = file.stream();
   out << "# imunoise convert: " << rec.source_path << ", SI units\n"
@@ -109,13 +109,13 @@ void write_csv(const io::Recording& rec, const std::string& path) {
     out << "# time_s: k / " << shortest_number_text(rec.report.timing.rate_hz)
         << " Hz (the input had a fixed rate)\n";
   }
-  for (const io::Channel& c : rec.channels) {
+  for (const pipeline::Channel& c : rec.channels) {
     out << "# " << c.name << ": from " << c.source_column
         << (c.source_unit.empty() ? "" : " [" + c.source_unit + "]")
         << (c.from_increments ? " (increments divided by the sample period)" : "") << "\n";
   }
   out << "time_s";
-  for (const io::Channel& c : rec.channels) out << "," << csv_column_name(c);
+  for (const pipeline::Channel& c : rec.channels) out << "," << csv_column_name(c);
   out << "\n";
 
   constexpr std::size_t kBlockRows = 4096;
@@ -127,7 +127,7 @@ void write_csv(const io::Recording& rec, const std::string& path) {
     char* p = text.data();
     for (std::size_t i = first; i < last; ++i) {
       p = std::to_chars(p, p + 24, sample_time_s(rec, i)).ptr;
-      for (const io::Channel& c : rec.channels) {
+      for (const pipeline::Channel& c : rec.channels) {
         *p++ = ',';
         p = std::to_chars(p, p + 24, c.values[i]).ptr;
       }
@@ -140,13 +140,14 @@ void write_csv(const io::Recording& rec, const std::string& path) {
 
 /// LCM log of imunoise.imu_sample_t: the six IMU channels (required) as rates, and the
 /// "temperature" channel when there is one; utime = start + time since the first sample [µs].
-void write_lcm(const io::Recording& rec, const std::string& path, const std::string& channel) {
-  std::array<const io::Channel*, 6> imu{};
+void write_lcm(const pipeline::Recording& rec, const std::string& path,
+               const std::string& channel) {
+  std::array<const pipeline::Channel*, 6> imu{};
   std::string missing;
   for (std::size_t c = 0; c < imu.size(); ++c) {
-    imu[c] = rec.find_channel(io::kImuChannelNames[c]);
+    imu[c] = rec.find_channel(pipeline::kImuChannelNames[c]);
     if (imu[c] == nullptr)
-      missing += std::string(missing.empty() ? "" : ", ") + io::kImuChannelNames[c];
+      missing += std::string(missing.empty() ? "" : ", ") + pipeline::kImuChannelNames[c];
   }
   if (!missing.empty()) {
     throw InputError(rec.source_path +
@@ -154,7 +155,7 @@ void write_lcm(const io::Recording& rec, const std::string& path, const std::str
                      "gyro_x ... accel_z; missing: " +
                      missing);
   }
-  const io::Channel* temperature = rec.find_channel("temperature");
+  const pipeline::Channel* temperature = rec.find_channel("temperature");
   const double start_us = std::round(rec.start_time_s * 1e6);
   if (!(std::fabs(start_us) < 9.2e18)) {
     throw InputError(rec.source_path + ": start_time_s does not fit a 64-bit µs stamp");
@@ -188,7 +189,7 @@ void run_convert(const ConvertArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   StageTimes times;
   ProgressBar bar("convert", progress_wanted(args.verbosity));
-  const io::Recording recording =
+  const pipeline::Recording recording =
       read_input_recording(args.input, config, args.lcm, bar.callback());
   bar.finish();
   times.mark("read");

@@ -21,9 +21,9 @@
 #include "ins/noise_from_model.h"
 #include "io/atomic_output.h"
 #include "io/noise_model_yaml.h"
-#include "io/recording.h"
 #include "models/filter_parameters.h"
 #include "models/state_space.h"
+#include "pipeline/recording.h"
 #include "tools/commands.h"
 #include "tools/gm_convention_option.h"
 #include "tools/invocation.h"
@@ -181,13 +181,13 @@ void run_discretize(const DiscretizeArgs& a) {
     for (int i = 0; i < 3; ++i) {
       noise.gyro[i].scale_factor_sigma = a.gyro_scale_sigma_ppm * 1e-6;
       noise.accel[i].scale_factor_sigma = a.accel_scale_sigma_ppm * 1e-6;
-      note_dropped_terms(noise.gyro[i], bias, io::kImuChannelNames[i], notes);
-      note_dropped_terms(noise.accel[i], bias, io::kImuChannelNames[3 + i], notes);
+      note_dropped_terms(noise.gyro[i], bias, pipeline::kImuChannelNames[i], notes);
+      note_dropped_terms(noise.accel[i], bias, pipeline::kImuChannelNames[3 + i], notes);
     }
     for (int i = 0; i < 3; ++i)
-      white.push_back({io::kImuChannelNames[i], noise.gyro[i].white_noise, true});
+      white.push_back({pipeline::kImuChannelNames[i], noise.gyro[i].white_noise, true});
     for (int i = 0; i < 3; ++i)
-      white.push_back({io::kImuChannelNames[3 + i], noise.accel[i].white_noise, false});
+      white.push_back({pipeline::kImuChannelNames[3 + i], noise.accel[i].white_noise, false});
     ins::ErrorStateOptions o;
     o.scale_factors = a.states == "21";
     o.bias = bias;

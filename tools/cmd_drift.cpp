@@ -86,14 +86,14 @@ void run_drift(DriftArgs a, StageTimes& times) {
   if (o.report_times_s.empty()) o.report_times_s.push_back(o.navigation_s);
 
   const io::InputConfig config = resolve_input_config(a.flags, a.config_path);
-  const io::Recording recording = read_input_recording(a.file, config, a.lcm, bar.callback());
+  const pipeline::Recording recording = read_input_recording(a.file, config, a.lcm, bar.callback());
   times.mark("read");
   pipeline::ImuSeries series;
   series.sample_period_s = recording.sample_period_s;
   for (int c = 0; c < 6; ++c) {
-    const io::Channel* channel = recording.find_channel(io::kImuChannelNames[c]);
+    const pipeline::Channel* channel = recording.find_channel(pipeline::kImuChannelNames[c]);
     if (channel == nullptr)
-      throw InputError(a.file + ": drift needs all six channels; " + io::kImuChannelNames[c] +
+      throw InputError(a.file + ": drift needs all six channels; " + pipeline::kImuChannelNames[c] +
                        " is missing (map it with --config or the column flags)");
     series.channels[c] = channel->values;
   }
@@ -116,9 +116,9 @@ void run_drift(DriftArgs a, StageTimes& times) {
   if (a.monte_carlo > 0) {
     models::ImuNoiseModel simulation;
     for (int i = 0; i < 3; ++i) {
-      if (const auto* g = model.find_axis(io::kImuChannelNames[i]))
+      if (const auto* g = model.find_axis(pipeline::kImuChannelNames[i]))
         simulation.gyro[i] = models::channel_model_from(g->coefficients());
-      if (const auto* f = model.find_axis(io::kImuChannelNames[3 + i]))
+      if (const auto* f = model.find_axis(pipeline::kImuChannelNames[3 + i]))
         simulation.accel[i] = models::channel_model_from(f->coefficients());
     }
     models::FlickerBand band;

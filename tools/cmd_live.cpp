@@ -236,7 +236,7 @@ void run_live(const LiveArgs& args) {
     analysed_until_us = window.last_utime();
     running = std::async(std::launch::async, [columns = std::move(columns), &args, source,
                                               channel = args.channel]() mutable {
-      const io::Recording recording =
+      const pipeline::Recording recording =
           io::recording_from_imu_samples(std::move(columns), source, channel);
       return analyze_recording(recording, source, args.analysis);
     });

@@ -86,7 +86,7 @@ bool is_binary_path(const std::string& path) {
 }
 
 /// The median of the intervals t[k+1] − t[k] of the stamps t[k] = k / rate (k < samples),
-/// computed as io::analyze_timing does (mean of the two middle values for an even count) from
+/// computed as pipeline::analyze_timing does (mean of the two middle values for an even count) from
 /// a histogram of the distinct intervals — a handful per binade of t — so that the header of a
 /// binary output holds the sample period a read of the CSV output finds.
 class IntervalMedian {
@@ -152,8 +152,8 @@ io::BinaryRecordingHeader binary_header(const SimulationSetup& setup, double rat
   h.sample_count = static_cast<std::uint64_t>(samples);
   for (std::size_t c = 0; c < models::kImuChannels; ++c) {
     const bool gyro = c < 3;
-    io::Channel channel;
-    channel.name = io::kImuChannelNames[c];
+    pipeline::Channel channel;
+    channel.name = pipeline::kImuChannelNames[c];
     channel.unit = gyro ? "rad/s" : "m/s^2";
     channel.source_column = channel.name + (gyro ? "_rad_per_s" : "_m_per_s2");
     channel.source_unit = channel.unit;

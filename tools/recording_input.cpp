@@ -146,9 +146,9 @@ bool is_lcm_log_file(const std::string& path) {
   return head[0] == 0xED && head[1] == 0xA1 && head[2] == 0xDA && head[3] == 0x01;
 }
 
-io::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
-                                   const LcmInputFlags& lcm, const ProgressCallback& progress,
-                                   unsigned threads) {
+pipeline::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
+                                         const LcmInputFlags& lcm, const ProgressCallback& progress,
+                                         unsigned threads) {
   if (io::is_binary_recording_file(path)) {
     reject_flags_for_binary(path, config, lcm);
     io::BinaryReadOptions options;
@@ -178,12 +178,12 @@ io::Recording read_input_recording(const std::string& path, const io::InputConfi
     channel = options.user_type ? channel_of_type(path, io::LcmUserImuDecoder(*options.user_type))
                                 : default_channel(path);
   }
-  io::Recording recording = io::read_lcm_imu_log(path, channel, options);
+  pipeline::Recording recording = io::read_lcm_imu_log(path, channel, options);
   if (options.user_type) {
     // Name the source units as the user wrote them ("deg/s", not a factor).
     const std::string gyro(io::to_string(config.gyro_unit.value_or(io::GyroUnit::kRadPerS)));
     const std::string accel(io::to_string(config.accel_unit.value_or(io::AccelUnit::kMPerS2)));
-    for (io::Channel& c : recording.channels) {
+    for (pipeline::Channel& c : recording.channels) {
       if (c.name.rfind("gyro_", 0) == 0) c.source_unit = gyro;
       if (c.name.rfind("accel_", 0) == 0) c.source_unit = accel;
     }

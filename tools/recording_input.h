@@ -9,7 +9,7 @@
 
 #include "common/progress.h"
 #include "io/input_config.h"
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 namespace CLI {
 class App;
@@ -38,8 +38,9 @@ bool is_lcm_log_file(const std::string& path);
 /// (--rate, --delimiter, ...) on a log; with --lcm-type, the column/unit flags map the user's
 /// fields. PROGRESS (optional) follows the bytes read of a table (io::read_recording), which
 /// parses on THREADS threads (0 = all cores; --threads).
-io::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
-                                   const LcmInputFlags& lcm, const ProgressCallback& progress = {},
-                                   unsigned threads = 0);
+pipeline::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
+                                         const LcmInputFlags& lcm,
+                                         const ProgressCallback& progress = {},
+                                         unsigned threads = 0);
 
 }  // namespace imunoise::tools

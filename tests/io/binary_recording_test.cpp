@@ -120,16 +120,16 @@ void expect_same_values(const std::vector<double>& a, const std::vector<double>&
 
 /// A recording with time stamps, the six IMU channels and an extra channel; awkward values
 /// (−0, subnormals, extremes) to catch any lossy conversion.
-Recording awkward_recording(std::size_t n) {
-  Recording rec;
+pipeline::Recording awkward_recording(std::size_t n) {
+  pipeline::Recording rec;
   rec.source_path = "/data/imu run (1).csv";
   rec.sample_period_s = 0.0025000000000000001;
   rec.start_time_s = 1700000000.123456;
   for (std::size_t i = 0; i < n; ++i) rec.time_s.push_back(static_cast<double>(i) / 400.0);
   const std::vector<double> special{-0.0, 5e-324, -1.7976931348623157e308, 0.1, 1.0 / 3.0};
   for (std::size_t c = 0; c < 6; ++c) {
-    Channel ch;
-    ch.name = kImuChannelNames[c];
+    pipeline::Channel ch;
+    ch.name = pipeline::kImuChannelNames[c];
     ch.unit = c < 3 ? "rad/s" : "m/s^2";
     ch.source_column = "column " + std::to_string(c + 2);
     ch.source_unit = c < 3 ? "rad" : "m/s";
@@ -141,7 +141,7 @@ Recording awkward_recording(std::size_t n) {
     }
     rec.channels.push_back(ch);
   }
-  Channel temperature{"temperature", "", {}, "temp_degc", "", false};
+  pipeline::Channel temperature{"temperature", "", {}, "temp_degc", "", false};
   for (std::size_t i = 0; i < n; ++i)
     temperature.values.push_back(20.0 + 0.001 * static_cast<double>(i));
   rec.channels.push_back(temperature);
@@ -150,14 +150,14 @@ Recording awkward_recording(std::size_t n) {
   return rec;
 }
 
-void expect_same_recording(const Recording& expected, const Recording& got) {
+void expect_same_recording(const pipeline::Recording& expected, const pipeline::Recording& got) {
   EXPECT_TRUE(same_bits(expected.sample_period_s, got.sample_period_s));
   EXPECT_TRUE(same_bits(expected.start_time_s, got.start_time_s));
   expect_same_values(expected.time_s, got.time_s, "time_s");
   ASSERT_EQ(expected.channels.size(), got.channels.size());
   for (std::size_t c = 0; c < got.channels.size(); ++c) {
-    const Channel& e = expected.channels[c];
-    const Channel& g = got.channels[c];
+    const pipeline::Channel& e = expected.channels[c];
+    const pipeline::Channel& g = got.channels[c];
     EXPECT_EQ(e.name, g.name);
     EXPECT_EQ(e.unit, g.unit);
     EXPECT_EQ(e.source_column, g.source_column);
@@ -170,7 +170,7 @@ void expect_same_recording(const Recording& expected, const Recording& got) {
 }
 
 /// sampling_report_to_json without the file lines (a binary file has none).
-nlohmann::ordered_json report_without_lines(const SamplingReport& report) {
+nlohmann::ordered_json report_without_lines(const pipeline::SamplingReport& report) {
   nlohmann::ordered_json j = sampling_report_to_json(report, "same");
   std::function<void(nlohmann::ordered_json&)> strip = [&](nlohmann::ordered_json& node) {
     if (node.is_object()) {
@@ -186,9 +186,9 @@ nlohmann::ordered_json report_without_lines(const SamplingReport& report) {
 
 TEST(BinaryRecording, RoundTripWithTimeAndExtraChannelIsBitIdentical) {
   const auto path = test::make_temp_dir("binrec") / "rec.imnb";
-  const Recording rec = awkward_recording(1000);
+  const pipeline::Recording rec = awkward_recording(1000);
   write_binary_recording(path.string(), rec);
-  const Recording back = read_binary_recording(path.string());
+  const pipeline::Recording back = read_binary_recording(path.string());
   EXPECT_EQ(back.source_path, path.string());
   expect_same_recording(rec, back);
   // The header keeps the original source and says who wrote it.
@@ -196,7 +196,7 @@ TEST(BinaryRecording, RoundTripWithTimeAndExtraChannelIsBitIdentical) {
   EXPECT_EQ(header.source_path, rec.source_path);
   EXPECT_EQ(header.created_by, kBinaryCreatedBy);
   // The report is computed from the stamps as analyze_timing does.
-  const TimingReport timing = analyze_timing(rec.time_s);
+  const pipeline::TimingReport timing = pipeline::analyze_timing(rec.time_s);
   EXPECT_EQ(back.report.samples, 1000);
   EXPECT_TRUE(back.report.timing.has_timestamps);
   EXPECT_EQ(back.report.timing.median_interval_s, timing.median_interval_s);
@@ -210,16 +210,16 @@ TEST(BinaryRecording, ThreadCountChangesNeitherTheRecordNorTheReport) {
   // Columns are read in parallel (pread, 1 MiB chunks) and the sampling checks run beside the
   // timing checks: 300 000 samples span three chunks per column.
   const auto path = test::make_temp_dir("binrec-threads") / "rec.imnb";
-  const Recording rec = awkward_recording(300'000);
+  const pipeline::Recording rec = awkward_recording(300'000);
   write_binary_recording(path.string(), rec);
   BinaryReadOptions options;
   options.threads = 1;
-  const Recording one = read_binary_recording(path.string(), options);
+  const pipeline::Recording one = read_binary_recording(path.string(), options);
   expect_same_recording(rec, one);
   const std::string one_report = report_without_lines(one.report).dump();
   for (unsigned threads : {2u, 3u, 8u}) {
     options.threads = threads;
-    const Recording many = read_binary_recording(path.string(), options);
+    const pipeline::Recording many = read_binary_recording(path.string(), options);
     expect_same_recording(rec, many);
     EXPECT_EQ(report_without_lines(many.report).dump(), one_report) << threads << " threads";
   }
@@ -227,7 +227,7 @@ TEST(BinaryRecording, ThreadCountChangesNeitherTheRecordNorTheReport) {
 
 TEST(BinaryRecording, WrittenBytesFollowTheDocumentedLayout) {
   const auto path = test::make_temp_dir("binrec-layout") / "rec.imnb";
-  const Recording rec = awkward_recording(5);
+  const pipeline::Recording rec = awkward_recording(5);
   write_binary_recording(path.string(), rec);
   const std::string bytes = read_file_bytes(path);
   ASSERT_GE(bytes.size(), 24U);
@@ -262,7 +262,7 @@ TEST(BinaryRecording, WrittenBytesFollowTheDocumentedLayout) {
 TEST(BinaryRecording, HandMadeFileReads) {
   const auto path = test::make_temp_dir("binrec-hand") / "hand.imnb";
   write_bytes(path, hand_made_file(small_header().dump(), kSmallColumns));
-  const Recording rec = read_binary_recording(path.string());
+  const pipeline::Recording rec = read_binary_recording(path.string());
   EXPECT_EQ(rec.sample_period_s, 0.01);
   EXPECT_EQ(rec.start_time_s, 100.0);
   EXPECT_EQ(rec.time_s, kSmallColumns[0]);
@@ -279,11 +279,11 @@ TEST(BinaryRecording, RoundTripFixedRateKeepsTheGivenRate) {
   InputConfig config;
   config.rate_hz = 3.0;  // 1 / (1/3) is not 3: the rate must be carried, not re-derived
   config.gyro_columns = {"a", "b"};
-  const Recording rec = read_recording(csv.string(), config);
+  const pipeline::Recording rec = read_recording(csv.string(), config);
   ASSERT_TRUE(rec.time_s.empty());
   const auto path = dir / "rate.imnb";
   write_binary_recording(path.string(), rec);
-  const Recording back = read_binary_recording(path.string());
+  const pipeline::Recording back = read_binary_recording(path.string());
   expect_same_recording(rec, back);
   EXPECT_TRUE(back.time_s.empty());
   EXPECT_EQ(report_without_lines(back.report), report_without_lines(rec.report));
@@ -292,7 +292,7 @@ TEST(BinaryRecording, RoundTripFixedRateKeepsTheGivenRate) {
 
 TEST(BinaryRecording, OneSampleRoundTrips) {
   const auto path = test::make_temp_dir("binrec-one") / "one.imnb";
-  const Recording rec = awkward_recording(1);
+  const pipeline::Recording rec = awkward_recording(1);
   write_binary_recording(path.string(), rec);
   expect_same_recording(rec, read_binary_recording(path.string()));
   EXPECT_EQ(std::filesystem::file_size(path) % 64, 0U);
@@ -300,7 +300,7 @@ TEST(BinaryRecording, OneSampleRoundTrips) {
 
 TEST(BinaryRecording, WriterRefusesNoChannelsAndLeavesNoFile) {
   const auto path = test::make_temp_dir("binrec-empty") / "empty.imnb";
-  Recording rec;
+  pipeline::Recording rec;
   rec.sample_period_s = 0.01;
   const std::string what = error_of([&] { write_binary_recording(path.string(), rec); });
   EXPECT_THAT(what, HasSubstr(path.string()));
@@ -311,7 +311,7 @@ TEST(BinaryRecording, WriterRefusesNoChannelsAndLeavesNoFile) {
 TEST(BinaryRecording, WriterRefusesNonFiniteAndLeavesNoFile) {
   const auto dir = test::make_temp_dir("binrec-nan-write");
   const auto path = dir / "nan.imnb";
-  Recording rec = awkward_recording(10);
+  pipeline::Recording rec = awkward_recording(10);
   rec.channels[2].values[7] = std::numeric_limits<double>::quiet_NaN();
   const std::string what = error_of([&] { write_binary_recording(path.string(), rec); });
   EXPECT_THAT(what, HasSubstr("gyro_z sample 7"));
@@ -350,12 +350,12 @@ TEST(BinaryRecording, SamplingReportEqualsTheCsvReadersWithAGap) {
     t_ms += 10;
   }
   test::write_text(csv, text);
-  const Recording from_csv = read_recording(csv.string(), InputConfig{});
+  const pipeline::Recording from_csv = read_recording(csv.string(), InputConfig{});
   ASSERT_EQ(from_csv.report.timing.gap_count, 1);
   ASSERT_EQ(from_csv.report.timing.non_monotonic_count, 1);
   const auto bin = dir / "gap.imnb";
   write_binary_recording(bin.string(), from_csv);
-  const Recording from_bin = read_binary_recording(bin.string());
+  const pipeline::Recording from_bin = read_binary_recording(bin.string());
   expect_same_recording(from_csv, from_bin);
   EXPECT_EQ(report_without_lines(from_bin.report), report_without_lines(from_csv.report));
   // Non-monotonic stamps are reported (as for CSV), not fatal, at the same sample.
@@ -370,7 +370,7 @@ TEST(BinaryRecording, FullScaleOptionsReachTheChannelReport) {
   write_binary_recording(path.string(), awkward_recording(50));
   BinaryReadOptions options;
   options.gyro_full_scale_rad_per_s = 0.5;
-  const Recording rec = read_binary_recording(path.string(), options);
+  const pipeline::Recording rec = read_binary_recording(path.string(), options);
   EXPECT_EQ(rec.report.channels[0].full_scale, 0.5);
   EXPECT_GT(rec.report.channels[0].beyond_full_scale, 0);
   EXPECT_FALSE(rec.report.channels[3].full_scale.has_value());

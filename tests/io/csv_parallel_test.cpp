@@ -427,8 +427,8 @@ TEST(CsvParallel, ReadRecordingAndSeriesDoNotDependOnThreads) {
   text += body;
   ASSERT_GT(text.size(), std::size_t{4} << 20);
   const auto path = fixture("rec.csv", text);
-  const Recording one = read_recording(path, {}, {}, 1);
-  const Recording two = read_recording(path, {}, {}, 2);
+  const pipeline::Recording one = read_recording(path, {}, {}, 1);
+  const pipeline::Recording two = read_recording(path, {}, {}, 2);
   EXPECT_TRUE(same_bits(one.time_s, two.time_s));
   ASSERT_EQ(one.channels.size(), 6u);
   ASSERT_EQ(two.channels.size(), 6u);

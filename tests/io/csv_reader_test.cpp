@@ -327,13 +327,13 @@ TEST(ReadRecording, ProgressFollowsTheBytesReadAndChangesNothing) {
   const std::string path = fixture("progress.csv", text);
   std::vector<std::int64_t> done_seen;
   std::int64_t total_seen = 0;
-  const Recording with = read_recording(
+  const pipeline::Recording with = read_recording(
       path, InputConfig{}, [&](std::string_view stage, std::int64_t done, std::int64_t total) {
         EXPECT_EQ(stage, "reading");
         done_seen.push_back(done);
         total_seen = total;
       });
-  const Recording without = read_recording(path, InputConfig{});
+  const pipeline::Recording without = read_recording(path, InputConfig{});
   EXPECT_EQ(total_seen, static_cast<std::int64_t>(text.size()));
   ASSERT_GE(done_seen.size(), 2u) << "more than one 1 MiB block";
   EXPECT_TRUE(std::is_sorted(done_seen.begin(), done_seen.end()));

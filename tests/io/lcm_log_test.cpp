@@ -92,7 +92,7 @@ std::string hash_text(std::int64_t hash) {
 TEST(LcmLog, ReadsRatesBitExactFromLcmLogFile) {
   constexpr int kCount = 64;
   const auto path = imu_log("rates.lcmlog", kCount);
-  const Recording rec = read_lcm_imu_log(path.string(), "IMU");
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "IMU");
 
   ASSERT_EQ(rec.sample_count(), static_cast<std::size_t>(kCount));
   EXPECT_EQ(rec.source_path, path.string());
@@ -102,7 +102,7 @@ TEST(LcmLog, ReadsRatesBitExactFromLcmLogFile) {
   const char* names[] = {"gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"};
   ASSERT_EQ(rec.channels.size(), 7u);  // six axes + temperature
   for (int c = 0; c < 6; ++c) {
-    const Channel& ch = rec.channels[c];
+    const pipeline::Channel& ch = rec.channels[c];
     EXPECT_EQ(ch.name, names[c]);
     EXPECT_EQ(ch.unit, c < 3 ? "rad/s" : "m/s^2");
     EXPECT_EQ(ch.source_unit, c < 3 ? "rad/s" : "m/s^2");
@@ -134,7 +134,7 @@ TEST(LcmLog, ReadsRatesBitExactFromLcmLogFile) {
 TEST(LcmLog, IncrementsAreDividedByTheMedianSamplePeriod) {
   constexpr int kCount = 40;
   const auto path = imu_log("inc.lcmlog", kCount, /*increments=*/true, /*temperature=*/false);
-  const Recording rec = read_lcm_imu_log(path.string(), "IMU");
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "IMU");
   ASSERT_EQ(rec.channels.size(), 6u);  // no temperature channel without has_temperature
   const double dt = rec.sample_period_s;
   EXPECT_NEAR(dt, 0.005, 1e-15);
@@ -210,7 +210,7 @@ TEST(LcmLog, ListsChannelsTypesAndFingerprintsInOrderOfAppearance) {
   EXPECT_EQ(channels[5].fingerprint, std::nullopt);
 
   // The IMU channel reads the same among the others.
-  const Recording rec = read_lcm_imu_log(log.path.string(), "IMU");
+  const pipeline::Recording rec = read_lcm_imu_log(log.path.string(), "IMU");
   ASSERT_EQ(rec.sample_count(), 10u);
   EXPECT_EQ(rec.channels[3].values[9], sample(9, false, false).specific_force_m_per_s2[0]);
 }
@@ -402,7 +402,7 @@ TEST(LcmLog, NonFiniteValuesAreAnErrorOrDroppedAndCounted) {
               HasSubstr("nan.lcmlog: byte offset " + std::to_string(writer.offset(2)) +
                         ": non-finite value in specific_force_m_per_s2[1] (NaN) on channel 'IMU' "
                         "(event number 2)"));
-  const Recording rec = read_lcm_imu_log(path.string(), "IMU", {.drop_non_finite = true});
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "IMU", {.drop_non_finite = true});
   EXPECT_EQ(rec.sample_count(), 3u);
   EXPECT_EQ(rec.report.rows_dropped, 2);
   EXPECT_EQ(rec.report.non_finite_dropped, 3);
@@ -454,7 +454,7 @@ TEST(LcmLog, ExtremeTimeStampsDoNotOverflow) {
     writer.write("IMU", m);
   }
   writer.close();
-  const Recording rec = read_lcm_imu_log(path.string(), "IMU");
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "IMU");
   EXPECT_DOUBLE_EQ(rec.time_s[1], 9223372036854.775808);
   EXPECT_GT(rec.time_s[2], rec.time_s[1]);
 }
@@ -474,7 +474,7 @@ TEST(LcmLog, MissingSamplesOfAbsurdGapsSaturate) {
     writer.write("IMU", m);
   }
   writer.close();
-  const Recording rec = read_lcm_imu_log(path.string(), "IMU");
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "IMU");
   EXPECT_EQ(rec.report.timing.gap_count, 2);
   EXPECT_EQ(rec.report.timing.missing_samples, kMax);
 }

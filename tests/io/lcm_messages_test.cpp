@@ -46,7 +46,7 @@ models::NoiseModel random_model(std::uint32_t seed) {
   model.confidence = 0.9;
   for (std::size_t c = 0; c < 6; ++c) {
     models::AxisModel axis;
-    axis.name = kImuChannelNames[c];
+    axis.name = pipeline::kImuChannelNames[c];
     axis.gyro = c < 3;
     for (std::size_t t = 0; t < 5; ++t) {
       models::Estimate& e = axis.terms[t];
@@ -178,7 +178,7 @@ TEST(ImuSamples, IncrementsAreDividedByTheMedianPeriod) {
   EXPECT_TRUE(columns.increments);
   EXPECT_EQ(columns.source_fields[1], "delta_angle_rad[1]");
   EXPECT_EQ(columns.source_units[4], "m/s");
-  const Recording rec = recording_from_imu_samples(columns, "mem", "IMU");
+  const pipeline::Recording rec = recording_from_imu_samples(columns, "mem", "IMU");
   EXPECT_DOUBLE_EQ(rec.sample_period_s, 0.01);
   ASSERT_NE(rec.find_channel("gyro_y"), nullptr);
   EXPECT_DOUBLE_EQ(rec.find_channel("gyro_y")->values[3], 1.5 / 0.01);
@@ -199,7 +199,7 @@ TEST(ImuSamples, TemperatureOnlyWhenEverySampleHasOne) {
     if (k == 2) m.has_temperature = false;
     append_imu_sample(m, some);
   }
-  const Recording a = recording_from_imu_samples(all, "mem", "IMU");
+  const pipeline::Recording a = recording_from_imu_samples(all, "mem", "IMU");
   ASSERT_NE(a.find_channel("temperature"), nullptr);
   EXPECT_EQ(a.find_channel("temperature")->values, (std::vector<double>{20, 21, 22, 23}));
   EXPECT_EQ(recording_from_imu_samples(some, "mem", "IMU").find_channel("temperature"), nullptr);

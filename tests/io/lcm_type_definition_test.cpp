@@ -715,14 +715,15 @@ TEST(LcmTypeDecode, NeverCrashesOnCorruptedMessages) {
 
 TEST(LcmUserType, InsTypeLogGivesTheMessagesValuesInSi) {
   const auto path = ins_log("ins.lcmlog", 50);
-  const Recording rec = read_lcm_imu_log(path.string(), "INS", with_user_type(ins_user_type()));
+  const pipeline::Recording rec =
+      read_lcm_imu_log(path.string(), "INS", with_user_type(ins_user_type()));
   ASSERT_EQ(rec.sample_count(), 50u);
   ASSERT_EQ(rec.channels.size(), 6u);
   EXPECT_NEAR(rec.sample_period_s, 0.005, 1e-15);  // the median of time_s differences
   EXPECT_EQ(rec.start_time_s, static_cast<double>(kEpochUs) * 1e-6);
   for (std::size_t c = 0; c < 6; ++c) {
-    const Channel& ch = rec.channels[c];
-    EXPECT_EQ(ch.name, kImuChannelNames[c]);
+    const pipeline::Channel& ch = rec.channels[c];
+    EXPECT_EQ(ch.name, pipeline::kImuChannelNames[c]);
     EXPECT_EQ(ch.source_column,
               "INS." + std::string(c < 3 ? "gyro" : "accel") + "[" + std::to_string(c % 3) + "]");
     EXPECT_EQ(ch.source_unit, c < 3 ? "rad/s" : "m/s^2");
@@ -765,7 +766,7 @@ TEST(LcmUserType, ScalarFieldsInDegreesAndGWithNanosecondStamps) {
     LogWriter writer(path);
     for (int i = 0; i < 20; ++i) writer.write("IMU", message(i));
   }
-  const Recording rec = read_lcm_imu_log(path.string(), "IMU", with_user_type(t));
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "IMU", with_user_type(t));
   ASSERT_EQ(rec.sample_count(), 20u);
   for (int i = 0; i < 20; ++i) {
     const usertest::scalar_imu_t m = message(i);
@@ -810,7 +811,7 @@ TEST(LcmUserType, IncrementsWithoutPackageAreDividedByTheSamplePeriod) {
     LogWriter writer(path);
     for (int i = 0; i < 30; ++i) writer.write("DELTA", message(i));
   }
-  const Recording rec = read_lcm_imu_log(path.string(), "DELTA", with_user_type(t));
+  const pipeline::Recording rec = read_lcm_imu_log(path.string(), "DELTA", with_user_type(t));
   ASSERT_EQ(rec.sample_count(), 30u);
   ASSERT_NEAR(rec.sample_period_s, 0.0025, 1e-15);
   for (std::size_t c = 0; c < 6; ++c) {
@@ -877,7 +878,7 @@ TEST(LcmUserType, NonFiniteValuesAreAnErrorOrDroppedAndCounted) {
   EXPECT_THAT(test::error_of(
                   [&] { read_lcm_imu_log(path.string(), "INS", with_user_type(ins_user_type())); }),
               HasSubstr("non-finite value in gyro[1] (NaN) (channel 'INS', event number 4)"));
-  const Recording rec =
+  const pipeline::Recording rec =
       read_lcm_imu_log(path.string(), "INS", with_user_type(ins_user_type(), true));
   EXPECT_EQ(rec.sample_count(), 9u);
   EXPECT_EQ(rec.report.rows_dropped, 1);

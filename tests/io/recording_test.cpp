@@ -1,6 +1,6 @@
 // Tests of read_recording (io/csv_reader.h) and io/recording.h: column mapping, SI conversion
 // of every unit, increments, fixed rate, exact ns stamps, and the mapping errors.
-#include "io/recording.h"
+#include "pipeline/recording.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -32,8 +32,8 @@ std::string fixture(const std::string& name, const std::string& text) {
 
 using test::error_of;
 
-const Channel& channel(const Recording& rec, const std::string& name) {
-  const Channel* c = rec.find_channel(name);
+const pipeline::Channel& channel(const pipeline::Recording& rec, const std::string& name) {
+  const pipeline::Channel* c = rec.find_channel(name);
   if (c == nullptr) throw std::runtime_error("no channel " + name);
   return *c;
 }
@@ -43,7 +43,7 @@ TEST(ReadRecording, RecognisesSimulateColumnNames) {
                                            "0.00,1,2,3,4,5,6\n"
                                            "0.01,1,2,3,4,5,6\n"
                                            "0.02,1,2,3,4,5,6\n");
-  const Recording rec = read_recording(path, {});
+  const pipeline::Recording rec = read_recording(path, {});
   ASSERT_EQ(rec.channels.size(), 6u);
   EXPECT_EQ(rec.channels[0].name, "gyro_x");
   EXPECT_EQ(rec.channels[5].name, "accel_z");
@@ -65,7 +65,7 @@ TEST(ReadRecording, HeaderlessPositionalMappingInDegPerSAndG) {
   config.gyro_unit = GyroUnit::kDegPerS;
   config.accel_columns = {"5", "6", "7"};
   config.accel_unit = AccelUnit::kG;
-  const Recording rec = read_recording(path, config);
+  const pipeline::Recording rec = read_recording(path, config);
   EXPECT_DOUBLE_EQ(channel(rec, "gyro_x").values[0], 0.017453292519943295);  // π/180
   EXPECT_DOUBLE_EQ(channel(rec, "gyro_y").values[0], -2.0 * 0.017453292519943295);
   EXPECT_DOUBLE_EQ(channel(rec, "accel_x").values[0], 9.80665);
@@ -84,7 +84,7 @@ TEST(ReadRecording, DegPerHourAndMilliGFactorsByValue) {
   config.gyro_unit = GyroUnit::kDegPerHour;
   config.accel_columns = {"a"};
   config.accel_unit = AccelUnit::kMilliG;
-  const Recording rec = read_recording(path, config);
+  const pipeline::Recording rec = read_recording(path, config);
   EXPECT_NEAR(channel(rec, "gyro_x").values[0], 4.848137e-6, 5e-13);  // theory.md §1.3
   EXPECT_NEAR(channel(rec, "accel_x").values[0], 9.80665e-3, 1e-15);
   ASSERT_EQ(rec.channels.size(), 2u);  // one axis each
@@ -107,7 +107,7 @@ TEST(ReadRecording, TimeUnits) {
     config.time_column = "t";
     config.time_unit = unit;
     config.gyro_columns = {"g"};
-    const Recording rec = read_recording(fixture("t.csv", text), config);
+    const pipeline::Recording rec = read_recording(fixture("t.csv", text), config);
     EXPECT_NEAR(rec.sample_period_s, period, period * 1e-12) << to_string(unit);
     EXPECT_EQ(rec.time_s.front(), 0.0);  // time is relative to the first sample
   }
@@ -124,7 +124,7 @@ TEST(ReadRecording, AngleAndVelocityIncrementsAreDividedByThePeriod) {
   config.gyro_unit = GyroUnit::kRadIncrement;
   config.accel_columns = {"dv"};
   config.accel_unit = AccelUnit::kMPerSIncrement;
-  const Recording rec = read_recording(path, config);
+  const pipeline::Recording rec = read_recording(path, config);
   EXPECT_NEAR(channel(rec, "gyro_x").values[0], 0.2, 1e-12);
   EXPECT_TRUE(channel(rec, "gyro_x").from_increments);
   EXPECT_EQ(channel(rec, "gyro_x").source_unit, "rad");
@@ -133,7 +133,7 @@ TEST(ReadRecording, AngleAndVelocityIncrementsAreDividedByThePeriod) {
 
   config.gyro_columns = {"dthd"};
   config.gyro_unit = GyroUnit::kDegIncrement;
-  const Recording deg = read_recording(path, config);
+  const pipeline::Recording deg = read_recording(path, config);
   EXPECT_NEAR(channel(deg, "gyro_x").values[1], 100.0 * units::kDegPerS, 1e-12);
 }
 
@@ -142,7 +142,7 @@ TEST(ReadRecording, FixedRateReplacesTimeColumn) {
       fixture("r.csv", std::string(kSimulateHeader) + "0,1,2,3,4,5,6\n9,1,2,3,4,5,6\n");
   InputConfig config;
   config.rate_hz = 50.0;
-  const Recording rec = read_recording(path, config);
+  const pipeline::Recording rec = read_recording(path, config);
   EXPECT_TRUE(rec.time_s.empty());
   EXPECT_DOUBLE_EQ(rec.sample_period_s, 0.02);
   EXPECT_FALSE(rec.report.timing.has_timestamps);
@@ -156,7 +156,7 @@ TEST(ReadRecording, NanosecondStampsStayExact) {
   for (long long i = 0; i < 100; ++i) {
     text += std::to_string(1403636579758555392LL + i * 5000000LL) + ",1,2,3\n";
   }
-  const Recording rec = read_recording(fixture("ns.csv", text), {});
+  const pipeline::Recording rec = read_recording(fixture("ns.csv", text), {});
   EXPECT_NEAR(rec.sample_period_s, 0.005, 1e-15);
   EXPECT_LT(rec.report.timing.jitter_max_s, 1e-15);  // parsed as doubles: ~1e-7 s
   EXPECT_DOUBLE_EQ(rec.start_time_s, 1403636579.758555392);
@@ -168,7 +168,7 @@ TEST(ReadRecording, ExtraColumnsKeepTheirValues) {
   InputConfig config;
   config.gyro_columns = {"gx"};
   config.extra_columns = {{"temperature_degc", "temp"}};
-  const Recording rec = read_recording(path, config);
+  const pipeline::Recording rec = read_recording(path, config);
   EXPECT_THAT(channel(rec, "temperature_degc").values, ElementsAre(25.5, 25.6));
   EXPECT_EQ(channel(rec, "temperature_degc").unit, "");
 }
@@ -185,8 +185,8 @@ TEST(ReadRecording, ReportNamesFileLinesOfTimingAnomalies) {
                             "0.015,0,0,0\n"  // line 8: goes back
                             "0.03,0,0,0\n"
                             "0.04,0,0,0\n");
-  const Recording rec = read_recording(path, {});
-  const TimingReport& t = rec.report.timing;
+  const pipeline::Recording rec = read_recording(path, {});
+  const pipeline::TimingReport& t = rec.report.timing;
   EXPECT_EQ(t.duplicate_count, 1);
   ASSERT_TRUE(t.first_duplicate.has_value());
   EXPECT_EQ(t.first_duplicate->index, 2);
@@ -203,7 +203,7 @@ TEST(ReadRecording, DroppedNonFiniteRowsAreCounted) {
               HasSubstr("nan.csv:3:5: non-finite value 'nan' in 'gyro_x_rad_per_s' (column 2)"));
   InputConfig config;
   config.drop_non_finite = true;
-  const Recording rec = read_recording(path, config);
+  const pipeline::Recording rec = read_recording(path, config);
   EXPECT_EQ(rec.sample_count(), 4u);
   EXPECT_EQ(rec.report.rows_dropped, 1);
   EXPECT_EQ(rec.report.non_finite_dropped, 2);
@@ -275,11 +275,11 @@ TEST(ReadRecordingErrors, TooFewSamplesAndStuckClock) {
 }
 
 TEST(RequireMinSamples, NamesFileCountAndPurpose) {
-  Recording rec;
+  pipeline::Recording rec;
   rec.source_path = "rec.csv";
   rec.channels.push_back({"gyro_x", "rad/s", {1.0, 2.0, 3.0}, "gx", "rad/s", false});
-  EXPECT_NO_THROW(require_min_samples(rec, 3, "Allan deviation"));
-  EXPECT_THAT(error_of([&] { require_min_samples(rec, 100, "Allan deviation"); }),
+  EXPECT_NO_THROW(pipeline::require_min_samples(rec, 3, "Allan deviation"));
+  EXPECT_THAT(error_of([&] { pipeline::require_min_samples(rec, 100, "Allan deviation"); }),
               HasSubstr("rec.csv: too few samples: 3 (need at least 100 for Allan deviation)"));
 }
 
@@ -293,7 +293,7 @@ TEST(ReadRecordingFuzzRegression, AbsurdGapsAreReportedWithoutOverflow) {
                             "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s\n"
                             "0,1,1,1\n1e-300,1,1,1\n2e-300,1,1,1\n3e-300,1,1,1\n"
                             "1e300,1,1,1\n2e300,1,1,1\n");
-  const Recording rec = read_recording(path, {});
+  const pipeline::Recording rec = read_recording(path, {});
   EXPECT_EQ(rec.report.timing.gap_count, 2);
   EXPECT_EQ(rec.report.timing.missing_samples, std::numeric_limits<std::int64_t>::max());
 }

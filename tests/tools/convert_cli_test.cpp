@@ -126,8 +126,8 @@ TEST_F(ConvertCli, BinaryToCsvToBinaryKeepsEveryByteOfData) {
 
 TEST_F(ConvertCli, SimulateBinaryEqualsTheConvertedCsv) {
   EXPECT_EQ(data_section(dir() / "sim.imnb"), data_section(dir() / "conv.imnb"));
-  const io::Recording sim = io::read_binary_recording((dir() / "sim.imnb").string());
-  const io::Recording conv = io::read_binary_recording((dir() / "conv.imnb").string());
+  const pipeline::Recording sim = io::read_binary_recording((dir() / "sim.imnb").string());
+  const pipeline::Recording conv = io::read_binary_recording((dir() / "conv.imnb").string());
   EXPECT_EQ(std::bit_cast<std::uint64_t>(sim.sample_period_s),
             std::bit_cast<std::uint64_t>(conv.sample_period_s));
   EXPECT_EQ(sim.start_time_s, conv.start_time_s);
@@ -155,8 +155,8 @@ TEST_F(ConvertCli, CsvToLcmLogReadsBackTheSameSamples) {
   const auto check = run_imunoise("check " + quoted_for_shell(log) + " --json");
   ASSERT_EQ(check.exit_code, 0) << check.err;
   EXPECT_THAT(check.out, HasSubstr("\"samples\": 6000"));
-  const io::Recording from_log = io::read_lcm_imu_log(log.string(), "IMU_A");
-  const io::Recording from_bin = io::read_binary_recording((dir() / "conv.imnb").string());
+  const pipeline::Recording from_log = io::read_lcm_imu_log(log.string(), "IMU_A");
+  const pipeline::Recording from_bin = io::read_binary_recording((dir() / "conv.imnb").string());
   ASSERT_EQ(from_log.channels.size(), 6U);
   for (std::size_t c = 0; c < 6; ++c) {
     expect_same_bits(from_log.channels[c].values, from_bin.channels[c].values,
@@ -184,7 +184,7 @@ TEST_F(ConvertCli, FixedRateCsvWithAnExtraColumnKeepsItInBinary) {
   const auto r = run_imunoise("convert " + quoted_for_shell(csv) + " --config " +
                               quoted_for_shell(config) + " -q -o " + quoted_for_shell(bin));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const io::Recording rec = io::read_binary_recording(bin.string());
+  const pipeline::Recording rec = io::read_binary_recording(bin.string());
   ASSERT_EQ(rec.channels.size(), 4U);
   EXPECT_EQ(rec.channels[3].name, "temperature");
   EXPECT_EQ(rec.channels[3].values, (std::vector<double>{20.5, 20.25, 20.0}));

@@ -1,7 +1,7 @@
 /// @file
 /// @brief A recording in SI: nominal sample period, time stamps and named channels
 /// (`gyro_x` … `accel_z`, plus extra mapped columns) with the sampling report of the read.
-/// Readers: io/csv_reader.h (`read_recording`).
+/// Pure data: the readers of io/ (CSV, binary, LCM log) fill it; pipeline/ analyses it.
 #pragma once
 
 #include <array>
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "common/errors.h"
-#include "io/sampling_report.h"
+#include "pipeline/sampling_checks.h"
 
-namespace imunoise::io {
+namespace imunoise::pipeline {
 
 /// The six standard channel names of a recording, gyro then accelerometer, x, y, z (body FRD).
 inline constexpr std::array<const char*, 6> kImuChannelNames{"gyro_x",  "gyro_y",  "gyro_z",
@@ -96,4 +96,4 @@ inline void require_min_samples(const Recording& recording, std::size_t min_samp
   require_min_samples(recording.source_path, recording.sample_count(), min_samples, purpose);
 }
 
-}  // namespace imunoise::io
+}  // namespace imunoise::pipeline
