@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "fuzz/fuzz_support.h"
+#include "io/lcm_field_decoder.h"
+#include "io/lcm_fingerprint.h"
 #include "io/lcm_type_definition.h"
 
 using namespace imunoise;

@@ -20,6 +20,7 @@
 
 #include "common/errors.h"
 #include "io/imu_samples.h"
+#include "io/lcm_fingerprint.h"
 #include "io/lcm_messages.h"
 
 namespace imunoise::io {
@@ -273,11 +274,6 @@ pipeline::Recording read_user_type_log(const std::string& path, const std::strin
 }
 
 }  // namespace
-
-std::string lcm_fingerprint_text(std::uint64_t fingerprint) {
-  return hex32(static_cast<std::uint32_t>(fingerprint >> 32)) +
-         hex32(static_cast<std::uint32_t>(fingerprint)).substr(2);
-}
 
 std::string describe_lcm_log_channels(const std::vector<LcmLogChannel>& channels) {
   if (channels.empty()) return "the log holds no events";

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "io/lcm_type_definition.h"
+#include "io/lcm_user_imu_decoder.h"
 #include "pipeline/recording.h"
 
 namespace imunoise::io {
@@ -46,15 +46,12 @@ std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path);
 /// 0x…, 2 events)" — how error messages list a log's channels.
 std::string describe_lcm_log_channels(const std::vector<LcmLogChannel>& channels);
 
-/// "0x" and 16 lower-case hex digits, as fingerprints are shown in messages.
-std::string lcm_fingerprint_text(std::uint64_t fingerprint);
-
 /// Options of read_lcm_imu_log.
 struct LcmReadOptions {
   /// false: a NaN/Inf in a used field is an InputError; true: the message is dropped and
   /// counted in the sampling report.
   bool drop_non_finite = false;
-  /// A user's own IMU message type (io/lcm_type_definition.h) instead of imu_sample_t: the
+  /// A user's own IMU message type (io/lcm_user_imu_decoder.h) instead of imu_sample_t: the
   /// channel must carry that type's fingerprint; the mapped fields are scaled to SI.
   std::optional<LcmUserType> user_type = std::nullopt;
 };

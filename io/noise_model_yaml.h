@@ -22,13 +22,13 @@ inline constexpr int kModelYamlVersion = 1;
 /// escapes, so parse_model_yaml() gives back every field bit for bit.
 /// @param[in] model the model; it must satisfy the loading rules of docs/model-yaml.md
 ///   (finite numbers, coefficients ≥ 0, ci_low ≤ ci_high, unique axis names, …).
-/// @throws std::invalid_argument naming the key path when MODEL breaks a loading rule — the
-///   text is checked by parsing it back, so every text returned here loads.
+/// @throws ContractViolation naming the key path when MODEL breaks a loading rule (a caller
+///   bug) — the text is checked by parsing it back, so every text returned here loads.
 std::string format_model_yaml(const models::NoiseModel& model);
 
 /// Writes format_model_yaml(MODEL) to PATH through AtomicOutputFile: PATH is replaced only
 /// when the whole text is on disk; on any failure it keeps its previous content.
-/// @throws std::invalid_argument as format_model_yaml(); InputError naming PATH on I/O errors.
+/// @throws ContractViolation as format_model_yaml(); InputError naming PATH on I/O errors.
 void write_model_yaml(const models::NoiseModel& model, const std::string& path);
 
 /// @}

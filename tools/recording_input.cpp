@@ -8,8 +8,9 @@
 #include "common/errors.h"
 #include "io/binary_recording.h"
 #include "io/csv_reader.h"
+#include "io/lcm_fingerprint.h"
 #include "io/lcm_log.h"
-#include "io/lcm_type_definition.h"
+#include "io/lcm_user_imu_decoder.h"
 
 namespace imunoise::tools {
 

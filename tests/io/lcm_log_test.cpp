@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "io/lcm_fingerprint.h"
 #include "lcm_test_support.h"
 #include "test_support.h"
 

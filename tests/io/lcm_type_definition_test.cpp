@@ -33,7 +33,10 @@
 
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "io/lcm_field_decoder.h"
+#include "io/lcm_fingerprint.h"
 #include "io/lcm_log.h"
+#include "io/lcm_user_imu_decoder.h"
 #include "lcm_test_support.h"
 #include "test_support.h"
 

@@ -15,7 +15,6 @@
 #include <limits>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -379,7 +378,7 @@ TEST(NoiseModelYaml, WriteIsAtomicAndKeepsOldContentOnFailure) {
   NoiseModel broken = model;
   broken.axes[0].terms[1].value = std::nan("");
   const std::string before = read_all(path);
-  expect_throw_containing<std::invalid_argument>(
+  expect_throw_containing<ContractViolation>(
       [&] { write_model_yaml(broken, path); },
       "axes.gyro_x.white_noise_rad_per_sqrt_s.value: expected a finite number, got 'nan'");
   EXPECT_EQ(read_all(path), before);
@@ -404,22 +403,21 @@ TEST(NoiseModelYaml, WriteIntoMissingDirectoryNamesThePath) {
 TEST(NoiseModelYaml, WriterRefusesModelsTheLoaderWouldReject) {
   NoiseModel negative = awkward_model();
   negative.axes[1].terms[2].ci_high = -1.0;
-  expect_throw_containing<std::invalid_argument>([&] { format_model_yaml(negative); },
-                                                 "ci_high: must be >= 0, got -1");
+  expect_throw_containing<ContractViolation>([&] { format_model_yaml(negative); },
+                                             "ci_high: must be >= 0, got -1");
 
   NoiseModel duplicate = awkward_model();
   duplicate.axes[1].name = "gyro_x";
-  expect_throw_containing<std::invalid_argument>([&] { format_model_yaml(duplicate); },
-                                                 "axes.gyro_x: duplicate key");
+  expect_throw_containing<ContractViolation>([&] { format_model_yaml(duplicate); },
+                                             "axes.gyro_x: duplicate key");
 
   NoiseModel no_axes = awkward_model();
   no_axes.axes.clear();
-  expect_throw_containing<std::invalid_argument>([&] { format_model_yaml(no_axes); },
-                                                 "axes: expected");
+  expect_throw_containing<ContractViolation>([&] { format_model_yaml(no_axes); }, "axes: expected");
 
   NoiseModel zero_tau = awkward_model();
   zero_tau.axes[0].multi_gm[1].tau_c_s = 0.0;
-  expect_throw_containing<std::invalid_argument>(
+  expect_throw_containing<ContractViolation>(
       [&] { format_model_yaml(zero_tau); },
       "axes.gyro_x.bias_instability_multi_gm.terms[1].tau_c_s: must be > 0, got 0");
 }

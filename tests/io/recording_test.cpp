@@ -1,4 +1,4 @@
-// Tests of read_recording (io/csv_reader.h) and io/recording.h: column mapping, SI conversion
+// Tests of read_recording (io/csv_reader.h) and pipeline/recording.h: column mapping, SI conversion
 // of every unit, increments, fixed rate, exact ns stamps, and the mapping errors.
 #include "pipeline/recording.h"
 

@@ -1,5 +1,6 @@
-#include "io/noise_model_yaml.h"
-
+/// @file
+/// @brief The strict loader of the native model.yaml (see noise_model_yaml.h): every key
+/// checked against the schema, every failure an InputError located at the offending node.
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -11,9 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -21,7 +20,8 @@
 
 #include "common/errors.h"
 #include "common/number_text.h"
-#include "io/atomic_output.h"
+#include "io/noise_model_yaml.h"
+#include "io/noise_model_yaml_internal.h"
 
 namespace imunoise::io {
 namespace {
@@ -31,287 +31,7 @@ using models::BiasInstabilityGm;
 using models::Estimate;
 using models::GaussMarkovEstimate;
 using models::NoiseModel;
-
-constexpr std::size_t kTermCount = kNoiseTerms.size();
-static_assert(static_cast<std::size_t>(NoiseTerm::quantization) == 0 &&
-                  static_cast<std::size_t>(NoiseTerm::ramp) == kTermCount - 1,
-              "the key tables below are indexed by NoiseTerm");
-
-/// The keys whose unit suffix depends on the sensor (units of theory.md §1.3).
-struct SensorKeys {
-  std::string_view sensor;                           ///< value of `sensor:`
-  std::array<std::string_view, kTermCount> terms;    ///< per NoiseTerm
-  std::array<std::string_view, kTermCount> symbols;  ///< comment written after each term key
-  std::string_view sigma;                            ///< Gauss–Markov σ [rad/s | m/s²]
-  std::string_view sigma_ci_low;
-  std::string_view sigma_ci_high;
-  std::string_view amplitude;  ///< sinusoid amplitude [rad/s | m/s²]
-};
-
-constexpr SensorKeys kGyroKeys{
-    "gyro",
-    {"quantization_rad", "white_noise_rad_per_sqrt_s", "bias_instability_rad_per_s",
-     "random_walk_rad_per_s_sqrt_s", "ramp_rad_per_s2"},
-    {"Q (angle quantization)", "N (ARW)", "B (bias instability)", "K (RRW)", "R (rate ramp)"},
-    "sigma_rad_per_s",
-    "sigma_ci_low_rad_per_s",
-    "sigma_ci_high_rad_per_s",
-    "amplitude_rad_per_s"};
-
-constexpr SensorKeys kAccelKeys{
-    "accel",
-    {"quantization_m_per_s", "white_noise_m_per_s_sqrt_s", "bias_instability_m_per_s2",
-     "random_walk_m_per_s2_sqrt_s", "ramp_m_per_s3"},
-    {"Q (velocity quantization)", "N (VRW)", "B (bias instability)", "K (accel random walk)",
-     "R (accel ramp)"},
-    "sigma_m_per_s2",
-    "sigma_ci_low_m_per_s2",
-    "sigma_ci_high_m_per_s2",
-    "amplitude_m_per_s2"};
-
-/// @name Key names shared by the writer and the reader
-/// @{
-constexpr std::string_view kFormatKey = "format";
-constexpr std::string_view kVersionKey = "format_version";
-constexpr std::array<std::string_view, 11> kRootKeys{
-    kFormatKey,   kVersionKey, "software",   "sensor_name",  "source", "sample_rate_hz",
-    "duration_s", "samples",   "confidence", "data_quality", "axes"};
-constexpr std::array<std::string_view, 6> kEstimateKeys{"value",      "ci_low", "ci_high",
-                                                        "identified", "method", "interval_method"};
-constexpr std::string_view kTauC = "tau_c_s";
-constexpr std::string_view kTauCLow = "tau_c_ci_low_s";
-constexpr std::string_view kTauCHigh = "tau_c_ci_high_s";
-constexpr std::string_view kFrequency = "frequency_hz";
-constexpr std::string_view kPhase = "phase_rad";
-constexpr std::string_view kConvention = "convention";
-constexpr std::string_view kGaussMarkov = "gauss_markov";
-constexpr std::string_view kSinusoids = "sinusoids";
-constexpr std::string_view kBiasGm = "bias_instability_as_gauss_markov";
-constexpr std::string_view kMultiGm = "bias_instability_multi_gm";
-constexpr std::string_view kMultiGmTerms = "terms";
-constexpr std::string_view kMultiGmFraction = "fraction_inside_ci";
-constexpr std::string_view kFit = "fit";
-constexpr std::array<std::string_view, 4> kFitKeys{"tau_min_s", "tau_max_s", "tau_of_min_adev_s",
-                                                   "note"};
-constexpr std::string_view kReadoff = "readoff";
-constexpr std::array<std::string_view, 2> kReadoffKeys{"ieee952_slope", "psd"};
-constexpr std::string_view kPsdCheck = "psd_check";
-constexpr std::array<std::string_view, 2> kPsdCheckKeys{"pass", "note"};
-/// @}
-
-const SensorKeys& keys_for(bool gyro) { return gyro ? kGyroKeys : kAccelKeys; }
-
-// ---------------------------------------------------------------------------------------------
-// Writing
-// ---------------------------------------------------------------------------------------------
-
-std::string integer_text(std::int64_t value) {
-  std::array<char, 24> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
-
-/// TEXT as a YAML double-quoted scalar. Quote, backslash and the C0 controls are escaped
-/// (\n, \r, \t, \xHH) so the scalar stays on one line; every other byte, UTF-8 included, is
-/// copied as is (yaml-cpp reads them back unchanged).
-std::string double_quoted(std::string_view text) {
-  constexpr std::string_view kHex = "0123456789abcdef";
-  std::string out;
-  out.reserve(text.size() + 2);
-  out += '"';
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"') {
-      out += "\\\"";
-    } else if (c == '\\') {
-      out += "\\\\";
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (byte < 0x20 || byte == 0x7f) {
-      out.append("\\x").append(1, kHex[byte >> 4]).append(1, kHex[byte & 0xf]);
-    } else {
-      out += c;
-    }
-  }
-  out += '"';
-  return out;
-}
-
-/// An axis name as a mapping key: plain when it is a simple name (gyro_x), quoted otherwise.
-std::string key_text(std::string_view name) {
-  const auto simple = [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  };
-  bool plain = !name.empty() && !(name[0] >= '0' && name[0] <= '9');
-  for (const char c : name) plain = plain && simple(c);
-  plain = plain && name != "null" && name != "Null" && name != "NULL";  // YAML's null spellings
-  return plain ? std::string(name) : double_quoted(name);
-}
-
-/// A one-line flow mapping "{key: value, …}" built in key order.
-class FlowMap {
- public:
-  FlowMap& raw(std::string_view key, const std::string& value_text) {
-    text_.append(text_.size() == 1 ? "" : ", ").append(key).append(": ").append(value_text);
-    return *this;
-  }
-  FlowMap& number(std::string_view key, double value) {
-    return raw(key, shortest_number_text(value));
-  }
-  FlowMap& boolean(std::string_view key, bool value) { return raw(key, value ? "true" : "false"); }
-  FlowMap& string(std::string_view key, std::string_view value) {
-    return raw(key, double_quoted(value));
-  }
-  std::string text() const { return text_ + "}"; }
-
- private:
-  std::string text_ = "{";
-};
-
-/// Builds the document line by line.
-class Writer {
- public:
-  std::string write(const NoiseModel& model) {
-    line(0, "# imunoise noise model (native schema v1). SI units, named in every key.");
-    line(0,
-         "# Coefficients per theory.md §1.3: AVAR = 3Q²/τ² + N²/τ + (2 ln2/π)B² + K²τ/3 + "
-         "R²τ²/2.");
-    line(0,
-         "# identified: false means the data did not show the term; value is then 0 and "
-         "ci_high an upper bound.");
-    line(0, std::string(kFormatKey) + ": " + kModelYamlFormat);
-    line(0, std::string(kVersionKey) + ": " + std::to_string(kModelYamlVersion));
-    line(0, "software: " + double_quoted(model.software));
-    line(0, "sensor_name: " + double_quoted(model.sensor_name));
-    line(0, "source: " + double_quoted(model.source));
-    line(0, "sample_rate_hz: " + shortest_number_text(model.sample_rate_hz));
-    line(0, "duration_s: " + shortest_number_text(model.duration_s));
-    line(0, "samples: " + integer_text(model.samples));
-    line(0, "confidence: " + shortest_number_text(model.confidence) +
-                "  # level of every [ci_low, ci_high]");
-    if (model.data_quality.empty()) {
-      line(0, "data_quality: []");
-    } else {
-      line(0, "data_quality:");
-      for (const std::string& finding : model.data_quality) line(2, "- " + double_quoted(finding));
-    }
-    line(0, "axes:");
-    for (const AxisModel& axis : model.axes) write_axis(axis);
-    return std::move(out_);
-  }
-
- private:
-  void line(int indent, const std::string& text) {
-    out_.append(static_cast<std::size_t>(indent), ' ').append(text).append("\n");
-  }
-
-  /// "key: []  # comment", or "key:  # comment" followed by one "- item" line per item.
-  void list(int indent, std::string_view key, const std::vector<std::string>& items,
-            std::string_view comment) {
-    const std::string tail = comment.empty() ? "" : "  # " + std::string(comment);
-    if (items.empty()) {
-      line(indent, std::string(key) + ": []" + tail);
-      return;
-    }
-    line(indent, std::string(key) + ":" + tail);
-    for (const std::string& item : items) line(indent + 2, "- " + item);
-  }
-
-  void write_axis(const AxisModel& axis) {
-    const SensorKeys& keys = keys_for(axis.gyro);
-    line(2, key_text(axis.name) + ":");
-    line(4, "sensor: " + std::string(keys.sensor) + "  # gyro | accel: decides the unit suffixes");
-    for (std::size_t t = 0; t < kTermCount; ++t) {
-      const Estimate& e = axis.terms[t];
-      const std::string flow = FlowMap()
-                                   .number("value", e.value)
-                                   .number("ci_low", e.ci_low)
-                                   .number("ci_high", e.ci_high)
-                                   .boolean("identified", e.identified)
-                                   .string("method", e.method)
-                                   .string("interval_method", e.interval_method)
-                                   .text();
-      line(4, std::string(keys.terms[t]) + ": " + flow + "  # " + std::string(keys.symbols[t]));
-    }
-
-    std::vector<std::string> items;
-    for (const GaussMarkovEstimate& gm : axis.gauss_markov) {
-      items.push_back(FlowMap()
-                          .number(keys.sigma, gm.value.sigma)
-                          .number(kTauC, gm.value.tau_c_s)
-                          .number(keys.sigma_ci_low, gm.sigma_ci_low)
-                          .number(keys.sigma_ci_high, gm.sigma_ci_high)
-                          .number(kTauCLow, gm.tau_c_ci_low_s)
-                          .number(kTauCHigh, gm.tau_c_ci_high_s)
-                          .text());
-    }
-    list(4, kGaussMarkov, items, "first-order Gauss-Markov terms: sigma, correlation time");
-
-    items.clear();
-    for (const Sinusoid& s : axis.sinusoids) {
-      items.push_back(FlowMap()
-                          .number(keys.amplitude, s.amplitude)
-                          .number(kFrequency, s.frequency_hz)
-                          .number(kPhase, s.phase_rad)
-                          .text());
-    }
-    list(4, kSinusoids, items, "A sin(2 pi f t + phase)");
-
-    items.clear();
-    for (const BiasInstabilityGm& b : axis.bias_instability_gm) {
-      items.push_back(FlowMap()
-                          .string(kConvention, b.convention)
-                          .number(keys.sigma, b.value.sigma)
-                          .number(kTauC, b.value.tau_c_s)
-                          .text());
-    }
-    list(4, kBiasGm, items, "B as one Gauss-Markov term, theory.md §4.4 conventions");
-
-    line(4, std::string(kMultiGm) + ":  # B as a sum of Gauss-Markov terms (theory.md §4.4)");
-    items.clear();
-    for (const GaussMarkov& gm : axis.multi_gm) {
-      items.push_back(FlowMap().number(keys.sigma, gm.sigma).number(kTauC, gm.tau_c_s).text());
-    }
-    list(6, kMultiGmTerms, items, "");
-    line(6, std::string(kMultiGmFraction) + ": " +
-                shortest_number_text(axis.multi_gm_fraction_inside_ci));
-
-    line(4, std::string(kFit) + ": " +
-                FlowMap()
-                    .number(kFitKeys[0], axis.fit_tau_min_s)
-                    .number(kFitKeys[1], axis.fit_tau_max_s)
-                    .number(kFitKeys[2], axis.tau_min_adev_s)
-                    .string(kFitKeys[3], axis.fit_note)
-                    .text());
-
-    line(4,
-         std::string(kReadoff) + ":  # graphical read-offs, for traceability only; 0 = not found");
-    const std::array<const std::array<double, kTermCount>*, 2> readoffs{&axis.readoff.slope,
-                                                                        &axis.readoff.psd};
-    for (std::size_t r = 0; r < readoffs.size(); ++r) {
-      FlowMap flow;
-      for (std::size_t t = 0; t < kTermCount; ++t) flow.number(keys.terms[t], (*readoffs[r])[t]);
-      line(6, std::string(kReadoffKeys[r]) + ": " + flow.text());
-    }
-
-    if (axis.psd_check_pass || !axis.psd_check_note.empty()) {
-      FlowMap flow;
-      if (axis.psd_check_pass) flow.boolean(kPsdCheckKeys[0], *axis.psd_check_pass);
-      flow.string(kPsdCheckKeys[1], axis.psd_check_note);
-      line(4, std::string(kPsdCheck) + ": " + flow.text() + "  # model PSD vs measured PSD");
-    }
-  }
-
-  std::string out_;
-};
-
-// ---------------------------------------------------------------------------------------------
-// Reading
-// ---------------------------------------------------------------------------------------------
+using namespace detail;  // the schema's key names (noise_model_yaml_internal.h)
 
 /// A scalar's text for a message: on one line, at most about 60 bytes.
 std::string shown(std::string_view text) {
@@ -521,24 +241,24 @@ class Reader {
     map.accept_only({kRootKeys.begin(), kRootKeys.end()});
 
     NoiseModel model;
-    model.software = map.text_or("software", model.software);
-    model.sensor_name = map.text_or("sensor_name", "");
-    model.source = map.text_or("source", "");
+    model.software = map.text_or(kSoftware, model.software);
+    model.sensor_name = map.text_or(kSensorName, "");
+    model.source = map.text_or(kSource, "");
     model.sample_rate_hz =
-        number(map.require("sample_rate_hz"), map.child("sample_rate_hz"), Range::kPositive);
-    model.duration_s = map.number_or("duration_s", 0.0, Range::kNonNegative);
-    if (const YAML::Node* samples = map.find("samples")) {
-      model.samples = integer(*samples, map.child("samples"));
-      if (model.samples < 0) fail(*samples, map.child("samples"), "must be >= 0");
+        number(map.require(kSampleRate), map.child(kSampleRate), Range::kPositive);
+    model.duration_s = map.number_or(kDuration, 0.0, Range::kNonNegative);
+    if (const YAML::Node* samples = map.find(kSamples)) {
+      model.samples = integer(*samples, map.child(kSamples));
+      if (model.samples < 0) fail(*samples, map.child(kSamples), "must be >= 0");
     }
-    model.confidence = map.number_or("confidence", model.confidence, Range::kOpenFraction);
-    if (const YAML::Node* findings = map.find("data_quality")) {
-      read_list(*findings, map.child("data_quality"), [&](const YAML::Node& item, const auto& at) {
+    model.confidence = map.number_or(kConfidence, model.confidence, Range::kOpenFraction);
+    if (const YAML::Node* findings = map.find(kDataQuality)) {
+      read_list(*findings, map.child(kDataQuality), [&](const YAML::Node& item, const auto& at) {
         model.data_quality.push_back(text(item, at));
       });
     }
 
-    const Map axes(*this, map.require("axes"), map.child("axes"));
+    const Map axes(*this, map.require(kAxes), map.child(kAxes));
     if (axes.entries().empty()) fail(axes.node(), axes.path(), "expected at least one axis");
     for (const Map::Entry& entry : axes.entries()) {
       model.axes.push_back(read_axis(entry.key, entry.value, axes.child(entry.key)));
@@ -549,10 +269,10 @@ class Reader {
   AxisModel read_axis(const std::string& name, const YAML::Node& node,
                       const std::string& path) const {
     const Map map(*this, node, path);
-    const YAML::Node& sensor = map.require("sensor");
-    const std::string sensor_name = text(sensor, map.child("sensor"));
+    const YAML::Node& sensor = map.require(kSensor);
+    const std::string sensor_name = text(sensor, map.child(kSensor));
     if (sensor_name != kGyroKeys.sensor && sensor_name != kAccelKeys.sensor) {
-      fail(sensor, map.child("sensor"),
+      fail(sensor, map.child(kSensor),
            "unknown sensor " + got(sensor) + " (expected gyro or accel)");
     }
     AxisModel axis;
@@ -560,7 +280,7 @@ class Reader {
     axis.gyro = sensor_name == kGyroKeys.sensor;
     const SensorKeys& keys = keys_for(axis.gyro);
 
-    std::vector<std::string_view> accepted{"sensor"};
+    std::vector<std::string_view> accepted{kSensor};
     accepted.insert(accepted.end(), keys.terms.begin(), keys.terms.end());
     accepted.insert(accepted.end(),
                     {kGaussMarkov, kSinusoids, kBiasGm, kMultiGm, kFit, kReadoff, kPsdCheck});
@@ -650,17 +370,17 @@ class Reader {
     const Map map(*this, node, path);
     map.accept_only({kEstimateKeys.begin(), kEstimateKeys.end()});
     Estimate e;
-    e.value = number(map.require("value"), map.child("value"), Range::kNonNegative);
-    e.ci_low = map.number_or("ci_low", e.value, Range::kNonNegative);
-    e.ci_high = map.number_or("ci_high", e.value, Range::kNonNegative);
-    check_order(map, "ci_low", "ci_high", e.ci_low, e.ci_high);
-    if (const YAML::Node* identified = map.find("identified")) {
-      e.identified = boolean(*identified, map.child("identified"));
+    e.value = number(map.require(kValue), map.child(kValue), Range::kNonNegative);
+    e.ci_low = map.number_or(kCiLow, e.value, Range::kNonNegative);
+    e.ci_high = map.number_or(kCiHigh, e.value, Range::kNonNegative);
+    check_order(map, kCiLow, kCiHigh, e.ci_low, e.ci_high);
+    if (const YAML::Node* identified = map.find(kIdentified)) {
+      e.identified = boolean(*identified, map.child(kIdentified));
     } else {
       e.identified = e.value > 0.0;
     }
-    e.method = map.text_or("method", "");
-    e.interval_method = map.text_or("interval_method", "");
+    e.method = map.text_or(kMethod, "");
+    e.interval_method = map.text_or(kIntervalMethod, "");
     return e;
   }
 
@@ -768,23 +488,6 @@ std::string Map::text_or(std::string_view key, const std::string& fallback) cons
 }
 
 }  // namespace
-
-std::string format_model_yaml(const NoiseModel& model) {
-  std::string text = Writer().write(model);
-  // The loader is the one statement of the rules: a model it would reject is not written.
-  try {
-    Reader("model being written").read(text);
-  } catch (const InputError& e) {
-    throw std::invalid_argument(std::string("format_model_yaml: the model breaks a model.yaml "
-                                            "rule (docs/model-yaml.md): ") +
-                                e.what());
-  }
-  return text;
-}
-
-void write_model_yaml(const NoiseModel& model, const std::string& path) {
-  write_file_atomically(path, format_model_yaml(model));
-}
 
 NoiseModel load_model_yaml(const std::string& path) {
   std::error_code ec;
