@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/number_text.h"
 #include "common/sampling_gap.h"
 
 namespace imunoise::pipeline {
@@ -85,6 +86,98 @@ std::vector<double> interpolate_gaps(std::span<const double> values,
   }
   out.insert(out.end(), values.begin() + static_cast<std::ptrdiff_t>(next), values.end());
   return out;
+}
+
+std::string gap_refusal_message(const std::string& source, const TimingReport& timing) {
+  if (timing.gap_count <= 0) return {};
+  std::string what = std::to_string(timing.gap_count) + " time-stamp gap(s)";
+  if (timing.first_gap) {
+    what.append(", the first before sample ").append(std::to_string(timing.first_gap->index));
+    if (!timing.gaps.empty()) {
+      what.append(" (t = ")
+          .append(significant_number_text(timing.gaps.front().start_s, 9))
+          .append(" s, ")
+          .append(significant_number_text(timing.gaps.front().length_s))
+          .append(" s long)");
+    }
+  }
+  what.append(", the longest ")
+      .append(significant_number_text(timing.longest_gap_s))
+      .append(" s, about ")
+      .append(std::to_string(timing.missing_samples))
+      .append(
+          " samples missing; the analysis needs uniformly spaced samples: use --gaps split "
+          "(pool the gap-free pieces) or --gaps interpolate (fill linearly), or fix the "
+          "recording");
+  const std::int64_t line =
+      timing.first_gap && timing.first_gap->line ? *timing.first_gap->line : 0;
+  return located_message(source, line, 0, what);
+}
+
+GapPlan plan_gaps(const Recording& recording, const std::string& source, GapPolicy policy,
+                  bool bootstrap) {
+  GapPlan plan;
+  plan.policy = policy;
+  const std::size_t n = recording.sample_count();
+  plan.samples = static_cast<std::int64_t>(n);
+  const TimingReport& timing = recording.report.timing;
+  if (timing.gap_count <= 0 || recording.time_s.size() != n || !(timing.median_interval_s > 0.0)) {
+    return plan;
+  }
+  if (policy == GapPolicy::refuse) {
+    throw InputError(gap_refusal_message(source, timing));
+  }
+  plan.gaps = find_time_gaps(recording.time_s, timing.median_interval_s);
+  if (plan.gaps.empty()) return plan;
+  const std::string count = std::to_string(plan.gaps.size()) + " time-stamp gap(s)";
+  if (policy == GapPolicy::split) {
+    const GapSplit split = split_at_gaps(n, plan.gaps, kMinPieceSamples);
+    if (split.pieces.empty()) {
+      throw AnalysisError(source + ": --gaps split: no gap-free piece has " +
+                          std::to_string(kMinPieceSamples) + " samples or more (" + count +
+                          " cut " + std::to_string(n) + " samples into " +
+                          std::to_string(split.dropped_pieces) + " pieces)");
+    }
+    plan.pieces = split.pieces;
+    plan.samples = 0;
+    for (const auto& piece : plan.pieces) plan.samples += static_cast<std::int64_t>(piece.size());
+    plan.note = "--gaps split: " + count + "; the curves and the PSD are pooled over " +
+                std::to_string(plan.pieces.size()) + " gap-free piece(s) (" +
+                std::to_string(plan.samples) + " samples)";
+    if (split.dropped_pieces > 0) {
+      plan.note += "; " + std::to_string(split.dropped_pieces) + " piece(s) shorter than " +
+                   std::to_string(kMinPieceSamples) + " samples dropped (" +
+                   std::to_string(split.dropped_samples) + " samples)";
+    }
+    if (bootstrap) {
+      plan.note += "; bootstrap intervals simulate one record of the total length (approximate)";
+    }
+    return plan;
+  }
+  // Interpolate: every gap must be short enough for a straight line to be harmless.
+  const std::int64_t limit = max_interpolated_gap(n);
+  std::int64_t filled = 0;
+  for (const TimeGap& g : plan.gaps) {
+    if (g.missing > limit) {
+      std::string at = "sample " + std::to_string(g.after);
+      if (recording.report.timing.first_gap && recording.report.timing.first_gap->line &&
+          recording.report.timing.first_gap->index == static_cast<std::int64_t>(g.after)) {
+        at.append(", line ").append(std::to_string(*recording.report.timing.first_gap->line));
+      }
+      throw InputError(source + ": --gaps interpolate: the gap before " + at +
+                       " (t = " + significant_number_text(g.start_s, 9) + " s, " +
+                       significant_number_text(g.length_s) + " s long) lacks " +
+                       std::to_string(g.missing) + " samples, more than interpolation may fill (" +
+                       std::to_string(limit) +
+                       ": 1 % of the record, at most 1000); use --gaps split");
+    }
+    filled += g.missing;
+  }
+  plan.samples += filled;
+  plan.note = "--gaps interpolate: " + count + " filled with " + std::to_string(filled) +
+              " linearly interpolated sample(s) per channel (noise-free, so the shortest tau "
+              "read slightly low)";
+  return plan;
 }
 
 }  // namespace imunoise::pipeline

@@ -9,8 +9,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
+
+#include "common/sampling_gap.h"
+#include "pipeline/recording.h"
 
 namespace imunoise::pipeline {
 
@@ -37,7 +41,7 @@ struct TimeGap {
 /// with the criterion of pipeline::analyze_timing: interval > gap_factor × period_s. Intervals
 /// ≤ 0 (duplicate or disordered stamps) are not gaps. Throws InputError when period_s ≤ 0.
 std::vector<TimeGap> find_time_gaps(std::span<const double> time_s, double period_s,
-                                    double gap_factor = 1.5);
+                                    double gap_factor = kGapFactor);
 
 /// A half-open range [begin, end) of sample indices.
 struct SampleRange {
@@ -70,5 +74,27 @@ std::int64_t max_interpolated_gap(std::size_t n);
 /// j = 1…k, k = g.missing, between its neighbours a − 1 and a = g.after. Output length
 /// n + Σ missing. GAPS as returned by find_time_gaps.
 std::vector<double> interpolate_gaps(std::span<const double> values, std::span<const TimeGap> gaps);
+
+/// How the samples of every channel of a recording reach the analysis under a gap policy.
+struct GapPlan {
+  GapPolicy policy = GapPolicy::refuse;
+  std::vector<TimeGap> gaps;        ///< every gap (split, interpolate)
+  std::vector<SampleRange> pieces;  ///< split: kept pieces; else empty
+  std::int64_t samples = 0;         ///< samples analysed per channel
+  std::string note;                 ///< data-quality line ("" without gaps)
+};
+
+/// Applies POLICY to the gaps of RECORDING (SOURCE names it in messages): refuses
+/// (InputError gap_refusal_message), or plans the split or the interpolation and words the
+/// data-quality line (BOOTSTRAP: the note says the bootstrap of a split record is
+/// approximate). Throws AnalysisError when a split leaves no piece of kMinPieceSamples,
+/// InputError when a gap is too long to interpolate.
+GapPlan plan_gaps(const Recording& recording, const std::string& source, GapPolicy policy,
+                  bool bootstrap);
+
+/// The one-line refusal of a recording with time-stamp gaps under GapPolicy::refuse: SOURCE
+/// (with the line of the first gap when known), the number of gaps, where the first is, the
+/// longest, the samples missing, and the two policies that go on. Empty when there is no gap.
+std::string gap_refusal_message(const std::string& source, const TimingReport& timing);
 
 }  // namespace imunoise::pipeline

@@ -39,7 +39,7 @@
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
 #include "pipeline/gap_policy.h"
-#include "tools/analysis_job.h"
+#include "tools/analysis_options.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
 #include "tools/invocation.h"
@@ -248,7 +248,7 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
       read_input_recording(args.file, config, args.lcm, bar.callback(), args.analysis.threads);
   times.mark("read");
   StageTimes channel_times;
-  AnalysisResult result = analyze_recording_freeing_time_stamps(
+  pipeline::RecordingAnalysis result = analyze_recording_freeing_time_stamps(
       recording, args.file, args.analysis,
       {&bar, args.verbosity.verbose ? &channel_times : nullptr});
   bar.finish();  // before anything else is written: the next output starts on a clean line
@@ -257,7 +257,8 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
                std::to_string(result.axes.size()) + " channels, bootstrap " +
                    std::to_string(args.analysis.bootstrap) +
                    " replicates; per stage, summed over the channels: " + channel_times.text());
-  if (args.verbosity.verbose) print_detail(args.verbosity, "analyze", psd_plan_text(result));
+  if (args.verbosity.verbose)
+    print_detail(args.verbosity, "analyze", pipeline::psd_plan_text(result));
   const models::NoiseModel& model = result.model;
   const std::vector<pipeline::AxisAnalysis>& axes = result.axes;
   const double tau0_s = result.tau0_s;

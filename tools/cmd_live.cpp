@@ -25,7 +25,7 @@
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "pipeline/gap_policy.h"
-#include "tools/analysis_job.h"
+#include "tools/analysis_options.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
 #include "tools/lcm_bus.h"
@@ -223,7 +223,7 @@ void run_live(const LiveArgs& args) {
   const std::string source = "lcm:" + args.channel;
   const auto started = std::chrono::steady_clock::now();
   std::int64_t analysed_until_us = 0;  // data time of the last analysis
-  std::future<AnalysisResult> running;
+  std::future<pipeline::RecordingAnalysis> running;
   LiveCounts& counts = window.counts();
 
   const auto log = [&](const std::string& line) {
@@ -243,7 +243,7 @@ void run_live(const LiveArgs& args) {
   };
   const auto finish_analysis = [&] {
     try {
-      AnalysisResult result = running.get();
+      pipeline::RecordingAnalysis result = running.get();
       ++counts.analyses;
       window.set_nominal_period_s(result.tau0_s);
       const std::int64_t utime = now_utime_us();

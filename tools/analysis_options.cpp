@@ -1,0 +1,221 @@
+#include "tools/analysis_options.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "analysis/tau_grid.h"
+#include "common/errors.h"
+#include "common/number_text.h"
+#include "io/fftw_wisdom.h"
+#include "pipeline/gap_policy.h"
+#include "tools/progress.h"
+#include "tools/verbosity.h"
+
+namespace imunoise::tools {
+
+namespace {
+
+pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau0_s) {
+  if (!(s.confidence > 0.0 && s.confidence < 1.0)) {
+    throw InputError("--confidence: expected a level in (0, 1), got " +
+                     shortest_number_text(s.confidence));
+  }
+  if (s.bootstrap == 1 || s.bootstrap < 0) {
+    throw InputError("--bootstrap: expected 0 (off) or at least 2 replicates");
+  }
+  pipeline::AxisAnalysisOptions options;
+  options.confidence = s.confidence;
+  options.grid = analysis::parse_tau_grid(s.taus);
+  options.bootstrap_replicates = s.bootstrap;
+  options.seed = s.seed;
+  options.fit.gauss_markov =
+      s.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
+  options.fit.tau_min_s = s.tau_min_s;
+  for (double f : s.sinusoid_hz) {
+    if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
+      throw InputError("--sinusoid-hz: " + shortest_number_text(f) +
+                       " Hz is not in (0, Nyquist = " + shortest_number_text(0.5 / tau0_s) +
+                       " Hz)");
+    }
+  }
+  options.fit.sinusoid_frequencies_hz = s.sinusoid_hz;
+  options.fit.tau_max_s = s.tau_max_s;
+  options.auto_low_pass = !s.no_low_pass_check;
+  return options;
+}
+
+/// Feeds one progress bar and the stage times from the channels analysed in parallel: the
+/// bar's fraction is the sum of the channels' units over their total, its stage the one
+/// reported last. Only atomics on the hot path; the times take a short lock on a stage change.
+class ChannelProgress {
+ public:
+  ChannelProgress(std::size_t channels, const pipeline::AxisAnalysisOptions& options,
+                  const AnalysisFeedback& feedback)
+      : feedback_(feedback),
+        done_(channels),
+        stage_(channels),
+        stage_start_(channels),
+        units_per_channel_(4 +
+                           (options.bootstrap_replicates >= 2 ? options.bootstrap_replicates : 0)),
+        channels_(static_cast<std::int64_t>(channels)) {
+    if (feedback_.bar != nullptr) feedback_.bar->set_items(0, channels_, "channels");
+  }
+
+  /// The callback of channel I (empty when nobody listens).
+  ProgressCallback callback(std::size_t i) {
+    if ((feedback_.bar == nullptr || !feedback_.bar->enabled()) &&
+        feedback_.channel_times == nullptr) {
+      return {};
+    }
+    return [this, i](std::string_view stage, std::int64_t done, std::int64_t) {
+      std::int64_t seen = done_[i].load();
+      while (done > seen && !done_[i].compare_exchange_weak(seen, done)) {
+      }
+      if (feedback_.channel_times != nullptr) time_stage(i, stage);
+      if (feedback_.bar != nullptr) {
+        std::int64_t sum = 0;
+        for (const auto& d : done_) sum += d.load();
+        feedback_.bar->update(stage, sum, units_per_channel_ * channels_);
+      }
+    };
+  }
+
+  void channel_finished() {
+    const std::int64_t finished = ++finished_;
+    if (feedback_.bar != nullptr) feedback_.bar->set_items(finished, channels_, "channels");
+  }
+
+ private:
+  /// Closes the running stage of channel I when it changes (stages arrive in order per
+  /// channel; bootstrap replicates repeat the same stage).
+  void time_stage(std::size_t i, std::string_view stage) {
+    const auto now = std::chrono::steady_clock::now();
+    std::lock_guard<std::mutex> lock(times_mutex_);
+    if (stage_[i] == stage) return;
+    if (!stage_[i].empty()) {
+      feedback_.channel_times->add(stage_[i],
+                                   std::chrono::duration<double>(now - stage_start_[i]).count());
+    }
+    stage_[i].assign(stage);
+    stage_start_[i] = now;
+  }
+
+  const AnalysisFeedback feedback_;
+  std::vector<std::atomic<std::int64_t>> done_;
+  std::vector<std::string> stage_;  // under times_mutex_
+  std::vector<std::chrono::steady_clock::time_point> stage_start_;
+  std::mutex times_mutex_;
+  const std::int64_t units_per_channel_;
+  const std::int64_t channels_;
+  std::atomic<std::int64_t> finished_{0};
+};
+
+}  // namespace
+
+void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
+  const std::string group = "Analysis";
+  cmd.add_option("--taus", s.taus, "tau grid: octave, decade, log:N (default log:10)")
+      ->group(group);
+  cmd.add_option("--confidence", s.confidence, "interval level (default 0.95)")->group(group);
+  cmd.add_option("--bootstrap", s.bootstrap,
+                 "parametric bootstrap replicates per axis (default 50; 0 = least-squares "
+                 "intervals, which ignore the correlation between tau points)")
+      ->group(group);
+  cmd.add_option("--seed", s.seed, "bootstrap seed (default 1)")->group(group);
+  cmd.add_option("--threads", s.threads, "worker threads (0 = all cores)")->group(group);
+  cmd.add_flag("--gauss-markov", s.gauss_markov,
+               "also fit first-order Gauss-Markov terms (grid of correlation times, refined)")
+      ->group(group);
+  cmd.add_option("--sinusoid-hz", s.sinusoid_hz,
+                 "candidate sinusoid frequencies F1,F2,... [Hz] (e.g. lines seen in psd.csv); "
+                 "each amplitude is fitted and kept only if the data support it")
+      ->delimiter(',')
+      ->group(group);
+  cmd.add_option("--tau-min", s.tau_min_s, "fit only tau >= this [s]")->group(group);
+  cmd.add_option("--tau-max", s.tau_max_s, "fit only tau <= this [s]")->group(group);
+  cmd.add_flag("--no-low-pass-check", s.no_low_pass_check,
+               "keep the shortest tau even where the curve bends below the white-noise line")
+      ->group(group);
+  cmd.add_option("--gaps", s.gaps,
+                 "time-stamp gaps: refuse (the statistics assume uniform sampling), "
+                 "split (analyse the gap-free pieces and pool them; pieces under " +
+                     std::to_string(pipeline::kMinPieceSamples) +
+                     " samples dropped) or interpolate (fill each gap linearly; gaps over 1 % "
+                     "of the record or 1000 samples refused)")
+      ->capture_default_str()
+      ->group(group);
+  cmd.add_option(
+         "--fftw-wisdom", s.fftw_wisdom,
+         "FFTW wisdom file from 'imunoise fftw-wisdom': the PSD transforms use its "
+         "measured plans (default: $IMUNOISE_FFTW_WISDOM; none, or '': FFTW_ESTIMATE plans)")
+      ->group(group);
+}
+
+std::string import_fftw_wisdom_option(const AnalysisSettings& settings) {
+  std::string path;
+  if (settings.fftw_wisdom) {
+    path = *settings.fftw_wisdom;  // "" switches the environment's file off
+  } else if (const char* env = std::getenv("IMUNOISE_FFTW_WISDOM")) {
+    path = env;
+  }
+  if (!path.empty()) io::import_fftw_wisdom(path);
+  return path;
+}
+
+pipeline::RecordingAnalysisOptions recording_analysis_options(const AnalysisSettings& settings,
+                                                              double tau0_s) {
+  pipeline::RecordingAnalysisOptions options;
+  options.axis = axis_options(settings, tau0_s);
+  options.gaps = pipeline::parse_gap_policy(settings.gaps);
+  options.threads = settings.threads;
+  return options;
+}
+
+namespace {
+
+/// RUN(options, channel feedback) with the options of SETTINGS and FEEDBACK fed from the
+/// channels of RECORDING.
+template <class Run>
+pipeline::RecordingAnalysis run_with_feedback(const pipeline::Recording& recording,
+                                              const AnalysisSettings& settings,
+                                              const AnalysisFeedback& feedback, Run&& run) {
+  const pipeline::RecordingAnalysisOptions options =
+      recording_analysis_options(settings, recording.sample_period_s);
+  std::size_t channels = 0;
+  for (const char* name : pipeline::kImuChannelNames) {
+    if (recording.find_channel(name) != nullptr) ++channels;
+  }
+  ChannelProgress progress(channels, options.axis, feedback);
+  pipeline::ChannelFeedback channel_feedback;
+  channel_feedback.progress = [&progress](std::size_t i) { return progress.callback(i); };
+  channel_feedback.channel_finished = [&progress] { progress.channel_finished(); };
+  return run(options, channel_feedback);
+}
+
+}  // namespace
+
+pipeline::RecordingAnalysis analyze_recording(const pipeline::Recording& recording,
+                                              const std::string& source,
+                                              const AnalysisSettings& settings,
+                                              const AnalysisFeedback& feedback) {
+  return run_with_feedback(recording, settings, feedback, [&](const auto& options, const auto& f) {
+    return pipeline::analyze_recording(recording, source, options, f);
+  });
+}
+
+pipeline::RecordingAnalysis analyze_recording_freeing_time_stamps(
+    pipeline::Recording& recording, const std::string& source, const AnalysisSettings& settings,
+    const AnalysisFeedback& feedback) {
+  return run_with_feedback(recording, settings, feedback, [&](const auto& options, const auto& f) {
+    return pipeline::analyze_recording_freeing_time_stamps(recording, source, options, f);
+  });
+}
+
+}  // namespace imunoise::tools
