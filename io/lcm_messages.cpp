@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/errors.h"
+#include "common/sensor_kind.h"
 
 namespace imunoise::io {
 
@@ -167,18 +168,23 @@ models::NoiseModel noise_model_from_message(const imunoise::noise_model_t& msg) 
   return model;
 }
 
-imunoise::allan_curve_t allan_curve_message(const DeviationSeries& curve, std::int64_t utime_us) {
+imunoise::allan_curve_t allan_curve_message(const std::string& axis_name,
+                                            const analysis::DeviationCurve& curve,
+                                            std::int64_t utime_us) {
   imunoise::allan_curve_t msg{};
   msg.utime = utime_us;
-  msg.axis_name = curve.axis_name;
-  msg.statistic = curve.statistic;
-  msg.unit = curve.unit;
+  msg.axis_name = axis_name;
+  msg.statistic = std::string(analysis::to_string(curve.type));
+  msg.unit =
+      std::string(si_rate_unit(sensor_kind_of_channel(axis_name).value_or(SensorKind::gyro)));
   msg.confidence_level = curve.confidence;
-  msg.n = static_cast<std::int32_t>(curve.tau_s.size());
-  msg.tau_s = curve.tau_s;
-  msg.deviation = curve.deviation;
-  msg.ci_low = curve.ci_low;
-  msg.ci_high = curve.ci_high;
+  msg.n = static_cast<std::int32_t>(curve.points.size());
+  for (const analysis::DeviationPoint& p : curve.points) {
+    msg.tau_s.push_back(p.tau_s);
+    msg.deviation.push_back(p.value);
+    msg.ci_low.push_back(p.ci_low);
+    msg.ci_high.push_back(p.ci_high);
+  }
   return msg;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/deviation.h"
 #include "io/imu_samples.h"
 #include "models/noise_model.h"
 
@@ -37,15 +38,11 @@ imunoise::noise_model_t noise_model_message(const models::NoiseModel& model, std
 /// n_axes (a message from a broken publisher).
 models::NoiseModel noise_model_from_message(const imunoise::noise_model_t& message);
 
-/// One deviation curve as an allan_curve_t.
-struct DeviationSeries {
-  std::string axis_name;    ///< gyro_x … accel_z
-  std::string statistic;    ///< "oadev", "ohdev", …
-  std::string unit;         ///< "rad/s" or "m/s^2"
-  double confidence = 0.0;  ///< level of [ci_low, ci_high]
-  std::vector<double> tau_s, deviation, ci_low, ci_high;
-};
-imunoise::allan_curve_t allan_curve_message(const DeviationSeries& curve, std::int64_t utime_us);
+/// The deviation CURVE of axis AXIS_NAME (gyro_… in rad/s, accel_… in m/s^2) as an
+/// allan_curve_t: statistic, unit, confidence and per point τ, deviation and interval.
+imunoise::allan_curve_t allan_curve_message(const std::string& axis_name,
+                                            const analysis::DeviationCurve& curve,
+                                            std::int64_t utime_us);
 
 /// Predicted drift (and the measured one, if any) as a drift_prediction_t. All vectors have
 /// the length of time_s (actual_horizontal_m may be empty: has_actual = false).

@@ -28,9 +28,8 @@ std::vector<std::string> split_commas(const std::string& line) {
   }
 }
 
-std::int64_t file_line_of_row(std::size_t row) { return static_cast<std::int64_t>(row) + 2; }
+}  // namespace
 
-/// InputError "PATH:LINE: empty cell in column 'NAME'" unless row R has a value in COLUMNS.
 void require_cells(const NumericTable& t, const std::string& path, std::size_t r,
                    std::initializer_list<std::size_t> columns) {
   for (std::size_t c : columns) {
@@ -41,8 +40,6 @@ void require_cells(const NumericTable& t, const std::string& path, std::size_t r
     }
   }
 }
-
-}  // namespace
 
 std::optional<std::size_t> NumericTable::find(const std::string& name) const {
   for (std::size_t i = 0; i < columns.size(); ++i) {
@@ -102,67 +99,6 @@ std::size_t require_column(const NumericTable& table, const std::string& path,
   std::string problem = "no column '";
   problem.append(name).append("' (is this ").append(what).append(" written by imunoise?)");
   throw InputError(located_message(path, 1, 0, problem));
-}
-
-std::vector<DeviationSeries> read_allan_csv(const std::string& path, double confidence) {
-  const NumericTable t = read_numeric_table(path);
-  const std::size_t tau = require_column(t, path, "tau_s", "an allan.csv");
-  std::vector<DeviationSeries> out;
-  for (const char* axis : pipeline::kImuChannelNames) {
-    const bool gyro = std::string(axis).rfind("gyro", 0) == 0;
-    const std::string unit_suffix = gyro ? "rad_per_s" : "m_per_s2";
-    for (const char* statistic : {"oadev", "ohdev"}) {
-      const std::string base = std::string(axis) + "_" + statistic + "_";
-      const auto value = t.find(base + unit_suffix);
-      if (!value) continue;  // an axis that was not analysed
-      const std::size_t low = require_column(t, path, base + "ci_low_" + unit_suffix, "allan.csv");
-      const std::size_t high =
-          require_column(t, path, base + "ci_high_" + unit_suffix, "allan.csv");
-      DeviationSeries s;
-      s.axis_name = axis;
-      s.statistic = statistic;
-      s.unit = gyro ? "rad/s" : "m/s^2";
-      s.confidence = confidence;
-      for (const auto& row : t.rows) {
-        if (!row[*value] || !row[tau]) continue;
-        s.tau_s.push_back(*row[tau]);
-        s.deviation.push_back(*row[*value]);
-        s.ci_low.push_back(row[low].value_or(0.0));
-        s.ci_high.push_back(row[high].value_or(0.0));
-      }
-      out.push_back(std::move(s));
-    }
-  }
-  if (out.empty()) {
-    throw InputError(located_message(path, 1, 0, "no <axis>_oadev_/_ohdev_ columns found"));
-  }
-  return out;
-}
-
-std::vector<PsdSeries> read_psd_csv(const std::string& path) {
-  const NumericTable t = read_numeric_table(path);
-  const std::size_t frequency = require_column(t, path, "frequency_hz", "a psd.csv");
-  std::vector<PsdSeries> out;
-  for (const char* axis : pipeline::kImuChannelNames) {
-    const bool gyro = std::string(axis).rfind("gyro", 0) == 0;
-    const std::string unit_suffix = gyro ? "rad2_per_s2_per_hz" : "m2_per_s4_per_hz";
-    const auto value = t.find(std::string(axis) + "_psd_" + unit_suffix);
-    if (!value) continue;
-    const std::size_t model =
-        require_column(t, path, std::string(axis) + "_model_psd_" + unit_suffix, "a psd.csv");
-    PsdSeries s;
-    s.axis_name = axis;
-    s.gyro = gyro;
-    for (const auto& row : t.rows) {
-      if (!row[*value] || !row[frequency]) continue;
-      s.frequency_hz.push_back(*row[frequency]);
-      s.density.push_back(*row[*value]);
-      s.model_density.push_back(row[model].value_or(std::nan("")));
-    }
-    out.push_back(std::move(s));
-  }
-  if (out.empty()) throw InputError(located_message(path, 1, 0, "no <axis>_psd_ columns found"));
-  return out;
 }
 
 DriftSeries read_drift_csv(const std::string& path) {

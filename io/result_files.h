@@ -1,10 +1,13 @@
 /// @file
-/// @brief Reading back the CSV results imunoise writes (allan.csv, psd.csv, drift_envelope.csv,
-/// drift_segments.csv), for `imunoise publish` and `imunoise report`. Every reader checks the
+/// @brief The numeric CSV tables of imunoise's own results, and the readers of
+/// drift_envelope.csv and drift_segments.csv (allan.csv: io/allan_csv.h, psd.csv: io/psd_csv.h),
+/// for `imunoise publish` and `imunoise report`. Every reader checks the
 /// columns it needs and reports a bad file as InputError "FILE:LINE: problem".
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,19 +33,13 @@ NumericTable read_numeric_table(const std::string& path);
 std::size_t require_column(const NumericTable& table, const std::string& path,
                            const std::string& name, const std::string& what);
 
-/// The OADEV and OHDEV curves of allan.csv (imunoise analyze): one series per axis and
-/// statistic, at the rows where the statistic has a value; intervals at level CONFIDENCE.
-std::vector<DeviationSeries> read_allan_csv(const std::string& path, double confidence);
+/// The file line of data row R of a NumericTable (the header is line 1).
+inline std::int64_t file_line_of_row(std::size_t row) { return static_cast<std::int64_t>(row) + 2; }
 
-/// One axis of psd.csv: the measured one-sided PSD and the fitted model's, per frequency.
-struct PsdSeries {
-  std::string axis_name;  ///< gyro_x … accel_z
-  bool gyro = true;       ///< unit (rad/s)²/Hz, else (m/s²)²/Hz
-  std::vector<double> frequency_hz, density, model_density;
-};
-
-/// The axes of psd.csv (imunoise analyze), at the rows where the axis has a value.
-std::vector<PsdSeries> read_psd_csv(const std::string& path);
+/// InputError "PATH:LINE: empty cell in column 'NAME'" unless row R of T has a value in each
+/// of COLUMNS.
+void require_cells(const NumericTable& t, const std::string& path, std::size_t r,
+                   std::initializer_list<std::size_t> columns);
 
 /// drift_envelope.csv (imunoise drift): predicted 1σ (DRMS) and the measured RMS drift.
 DriftSeries read_drift_csv(const std::string& path);

@@ -151,7 +151,29 @@ std::string figure_csv(const Figure& figure) {
   return out;
 }
 
-Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
+namespace {
+
+/// The measured OADEV of one axis of allan.csv as the plotted columns.
+struct Measured {
+  std::string axis_name;
+  std::vector<double> tau_s, deviation, ci_low, ci_high;
+};
+
+Measured oadev_of(const io::AllanAxis& axis) {
+  Measured m;
+  m.axis_name = axis.name;
+  for (const analysis::DeviationPoint& p : axis.oadev.points) {
+    m.tau_s.push_back(p.tau_s);
+    m.deviation.push_back(p.value);
+    m.ci_low.push_back(p.ci_low);
+    m.ci_high.push_back(p.ci_high);
+  }
+  return m;
+}
+
+}  // namespace
+
+Figure allan_figure(bool gyro, const std::vector<io::AllanAxis>& curves,
                     const models::NoiseModel& model) {
   Figure f;
   const std::string sensor = gyro ? "gyro" : "accel";
@@ -164,7 +186,8 @@ Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
   f.plot.x = {"averaging time τ [s]", Scale::log10, {}, {}};
   f.plot.y = {gyro ? "σ(τ) [rad/s]" : "σ(τ) [m/s²]", Scale::log10, {}, {}};
   double confidence = model.confidence;
-  for (const DeviationData& curve : curves) {
+  for (const io::AllanAxis& allan : curves) {
+    const Measured curve = oadev_of(allan);
     if (is_gyro(curve.axis_name) != gyro) continue;
     const int color = axis_color(curve.axis_name);
     const std::string letter = axis_letter(curve.axis_name);
@@ -263,7 +286,7 @@ Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
   return f;
 }
 
-Figure psd_figure(bool gyro, const std::vector<PsdData>& spectra) {
+Figure psd_figure(bool gyro, const std::vector<io::PsdAxis>& spectra) {
   Figure f;
   const std::string sensor = gyro ? "gyro" : "accel";
   f.name = "psd-" + sensor;
@@ -274,25 +297,25 @@ Figure psd_figure(bool gyro, const std::vector<PsdData>& spectra) {
                       : "Accelerometers: power spectral density (one-sided)";
   f.plot.x = {"frequency f [Hz]", Scale::log10, {}, {}};
   f.plot.y = {gyro ? "S(f) [(rad/s)²/Hz]" : "S(f) [(m/s²)²/Hz]", Scale::log10, {}, {}};
-  for (const PsdData& s : spectra) {
-    if (is_gyro(s.axis_name) != gyro) continue;
-    const int color = axis_color(s.axis_name);
-    const std::string letter = axis_letter(s.axis_name);
+  for (const io::PsdAxis& s : spectra) {
+    if (is_gyro(s.name) != gyro) continue;
+    const int color = axis_color(s.name);
+    const std::string letter = axis_letter(s.name);
     Series measured;
     measured.name = letter + ": Welch PSD";
-    measured.x = s.frequency_hz;
-    measured.y = s.density;
+    measured.x = s.psd.frequency_hz;
+    measured.y = s.psd.density;
     measured.color = color;
     measured.line_width = 1.2;
-    add_series(f, std::move(measured), s.axis_name + " psd");
+    add_series(f, std::move(measured), s.name + " psd");
     Series model;
     model.name = letter + ": fitted model";
-    model.x = s.frequency_hz;
+    model.x = s.psd.frequency_hz;
     model.y = s.model_density;
     model.color = color;
     model.line = Line::dashed;
     model.line_width = 1.8;
-    add_series(f, std::move(model), s.axis_name + " model psd");
+    add_series(f, std::move(model), s.name + " model psd");
   }
   f.caption = "Log-binned one-sided Welch PSD of each " + sensor +
               " axis (solid) and the PSD the fitted model predicts (dashed): the cross-check of "

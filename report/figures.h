@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "io/allan_csv.h"
+#include "io/psd_csv.h"
 #include "models/noise_model.h"
 #include "report/svg_plot.h"
 
@@ -30,28 +32,16 @@ struct Figure {
 /// Numbers are shortest round-trip decimals.
 std::string figure_csv(const Figure& figure);
 
-/// One measured deviation curve (SI: rad/s or m/s²) with its confidence interval.
-struct DeviationData {
-  std::string axis_name;  ///< gyro_x … accel_z
-  std::vector<double> tau_s, deviation, ci_low, ci_high;
-};
-
 /// "allan-gyro" / "allan-accel": OADEV of the sensor's axes with interval bars; per axis the
 /// fitted total model ADEV (solid) and each identified term (dashed: Q, N, B, K, R, GM,
 /// sinusoids) from MODEL, over the measured τ range; the IEEE-952 slope read-offs marked where
 /// the method reads them (Q at τ = √3 s, N at 1 s, B as 0.664·B at the ADEV minimum, K at
 /// 3 s, R at √2 s; theory.md §4.2). Axes of the other sensor are ignored.
-Figure allan_figure(bool gyro, const std::vector<DeviationData>& curves,
+Figure allan_figure(bool gyro, const std::vector<io::AllanAxis>& curves,
                     const models::NoiseModel& model);
 
-/// One measured one-sided PSD with the fitted model's ((rad/s)²/Hz or (m/s²)²/Hz).
-struct PsdData {
-  std::string axis_name;
-  std::vector<double> frequency_hz, density, model_density;
-};
-
 /// "psd-gyro" / "psd-accel": the log-binned PSD of each axis (solid) and the model (dashed).
-Figure psd_figure(bool gyro, const std::vector<PsdData>& spectra);
+Figure psd_figure(bool gyro, const std::vector<io::PsdAxis>& spectra);
 
 /// Recorded free-inertial drift and the model's prediction against time.
 struct DriftData {

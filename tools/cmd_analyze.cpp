@@ -30,9 +30,11 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "common/units.h"
+#include "io/allan_csv.h"
 #include "io/atomic_output.h"
 #include "io/csv_reader.h"
 #include "io/noise_model_yaml.h"
+#include "io/psd_csv.h"
 #include "io/sampling_report.h"
 #include "io/simulation_model.h"
 #include "models/datasheet_units.h"
@@ -69,100 +71,6 @@ struct AnalyzeArgs {
   std::string model_channel = "NOISE_MODEL";
   std::string curves_channel = "ALLAN_CURVE";
 };
-
-std::string unit_suffix(bool gyro) { return gyro ? "rad_per_s" : "m_per_s2"; }
-std::string psd_unit_suffix(bool gyro) { return gyro ? "rad2_per_s2_per_hz" : "m2_per_s4_per_hz"; }
-
-/// allan.csv: one row per averaging factor (union of the OADEV and OHDEV grids), per axis the
-/// OADEV with its interval, EDF and identified α, the fitted model ADEV, and the OHDEV.
-void write_allan_csv(const std::string& path, const std::vector<pipeline::AxisAnalysis>& axes,
-                     double tau0_s) {
-  std::map<std::int64_t, std::size_t> rows;
-  for (const auto& a : axes) {
-    for (const auto& p : a.oadev.points) rows.emplace(p.m, 0);
-    for (const auto& p : a.ohdev.points) rows.emplace(p.m, 0);
-  }
-  io::AtomicOutputFile file(path);
-  std::ostream& out = file.stream();
-  out << "m,tau_s";
-  for (const auto& a : axes) {
-    const std::string n = a.model.name;
-    const std::string u = unit_suffix(a.model.gyro);
-    out << "," << n << "_oadev_" << u << "," << n << "_oadev_ci_low_" << u << "," << n
-        << "_oadev_ci_high_" << u << "," << n << "_oadev_edf," << n << "_oadev_alpha," << n
-        << "_model_adev_" << u << "," << n << "_ohdev_" << u << "," << n << "_ohdev_ci_low_" << u
-        << "," << n << "_ohdev_ci_high_" << u;
-  }
-  out << "\n";
-  for (const auto& [m, unused] : rows) {
-    (void)unused;
-    const double tau = static_cast<double>(m) * tau0_s;
-    out << m << "," << shortest_number_text(tau);
-    for (const auto& a : axes) {
-      const auto find =
-          [m = m](const analysis::DeviationCurve& c) -> const analysis::DeviationPoint* {
-        for (const auto& p : c.points) {
-          if (p.m == m) return &p;
-        }
-        return nullptr;
-      };
-      if (const auto* p = find(a.oadev)) {
-        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low)
-            << "," << shortest_number_text(p->ci_high) << "," << shortest_number_text(p->edf) << ","
-            << p->alpha;
-      } else {
-        out << ",,,,,";
-      }
-      out << "," << shortest_number_text(std::sqrt(analysis::model_avar(a.fit.coefficients, tau)));
-      if (const auto* p = find(a.ohdev)) {
-        out << "," << shortest_number_text(p->value) << "," << shortest_number_text(p->ci_low)
-            << "," << shortest_number_text(p->ci_high);
-      } else {
-        out << ",,,";
-      }
-    }
-    out << "\n";
-  }
-  file.commit();
-}
-
-/// psd.csv: one row per log bin (every axis has the same bins: same length, rate and Welch
-/// settings), per axis the one-sided PSD, its dof and the fitted model's PSD, with the unit
-/// in every column name as in allan.csv.
-void write_psd_csv(const std::string& path, const std::vector<pipeline::AxisAnalysis>& axes,
-                   double tau0_s) {
-  std::map<double, std::size_t> rows;  // frequency → row; a bin an axis lacks stays empty
-  for (const auto& a : axes) {
-    for (double f : a.psd.frequency_hz) rows.emplace(f, 0);
-  }
-  io::AtomicOutputFile file(path);
-  std::ostream& out = file.stream();
-  out << "frequency_hz";
-  for (const auto& a : axes) {
-    const std::string n = a.model.name;
-    const std::string u = psd_unit_suffix(a.model.gyro);
-    out << "," << n << "_psd_" << u << "," << n << "_psd_dof," << n << "_model_psd_" << u;
-  }
-  out << "\n";
-  for (const auto& [f, unused] : rows) {
-    (void)unused;
-    out << shortest_number_text(f);
-    for (const auto& a : axes) {
-      const auto& freq = a.psd.frequency_hz;
-      const auto it = std::find(freq.begin(), freq.end(), f);
-      if (it == freq.end()) {
-        out << ",,,";
-        continue;
-      }
-      const auto i = static_cast<std::size_t>(it - freq.begin());
-      out << "," << shortest_number_text(a.psd.density[i]) << ","
-          << shortest_number_text(a.psd.dof[i]) << ","
-          << shortest_number_text(analysis::model_psd_one_sided(a.fit.coefficients, f, tau0_s));
-    }
-    out << "\n";
-  }
-  file.commit();
-}
 
 /// "1.234e-02 [1.1e-02, 1.4e-02]" or "not identified (< 3e-4)".
 std::string estimate_text(const models::Estimate& e, const models::DatasheetUnit& unit) {
@@ -266,8 +174,8 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   io::create_output_directory(args.output_dir);
   const std::filesystem::path dir(args.output_dir);
   io::write_model_yaml(model, (dir / "model.yaml").string());
-  write_allan_csv((dir / "allan.csv").string(), axes, tau0_s);
-  write_psd_csv((dir / "psd.csv").string(), axes, tau0_s);
+  io::write_allan_csv((dir / "allan.csv").string(), io::allan_table(axes, tau0_s));
+  io::write_psd_csv((dir / "psd.csv").string(), io::psd_table(axes, tau0_s));
   io::write_file_atomically(
       (dir / "sampling_report.json").string(),
       io::sampling_report_to_json(recording.report, args.file).dump(2) + "\n");
@@ -282,11 +190,10 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   if (bus) {
     const std::int64_t utime = now_utime_us();
     bus->publish(args.model_channel, io::noise_model_message(model, utime));
-    const std::vector<io::DeviationSeries> curves = oadev_series(axes);
-    for (const io::DeviationSeries& c : curves) {
-      bus->publish(args.curves_channel, io::allan_curve_message(c, utime));
+    for (const pipeline::AxisAnalysis& a : axes) {
+      bus->publish(args.curves_channel, io::allan_curve_message(a.model.name, a.oadev, utime));
     }
-    std::cout << "published the model on '" << args.model_channel << "' and " << curves.size()
+    std::cout << "published the model on '" << args.model_channel << "' and " << axes.size()
               << " OADEV curves on '" << args.curves_channel << "' (" << args.lcm_url << ")\n";
   }
 }

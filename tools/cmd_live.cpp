@@ -250,8 +250,9 @@ void run_live(const LiveArgs& args) {
       try {
         out_bus.publish(args.model_channel, io::noise_model_message(result.model, utime));
         if (!args.no_curves) {
-          for (const io::DeviationSeries& c : oadev_series(result.axes)) {
-            out_bus.publish(args.curves_channel, io::allan_curve_message(c, utime));
+          for (const pipeline::AxisAnalysis& a : result.axes) {
+            out_bus.publish(args.curves_channel,
+                            io::allan_curve_message(a.model.name, a.oadev, utime));
           }
         }
       } catch (const InputError& e) {

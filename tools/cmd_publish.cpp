@@ -16,6 +16,7 @@
 
 #include "common/errors.h"
 #include "common/units.h"
+#include "io/allan_csv.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "io/result_files.h"
@@ -47,8 +48,13 @@ void run_publish(const PublishArgs& args) {
   const double interval_s = parse_duration_s(args.interval, "--interval", true);
   // Read everything before opening the bus: a bad file publishes nothing.
   const models::NoiseModel model = io::load_model_yaml(args.model_path);
-  std::vector<io::DeviationSeries> curves;
-  if (!args.curves_path.empty()) curves = io::read_allan_csv(args.curves_path, model.confidence);
+  std::vector<std::pair<std::string, analysis::DeviationCurve>> curves;  // axis, curve
+  if (!args.curves_path.empty()) {
+    for (io::AllanAxis& a : io::read_allan_csv(args.curves_path, model.confidence).axes) {
+      curves.emplace_back(a.name, std::move(a.oadev));
+      curves.emplace_back(a.name, std::move(a.ohdev));
+    }
+  }
   std::optional<io::DriftSeries> drift;
   if (!args.drift_path.empty()) drift = io::read_drift_csv(args.drift_path);
 
@@ -57,8 +63,8 @@ void run_publish(const PublishArgs& args) {
     if (k > 0) std::this_thread::sleep_for(std::chrono::duration<double>(interval_s));
     const std::int64_t utime = now_utime_us();
     bus.publish(args.model_channel, io::noise_model_message(model, utime));
-    for (const io::DeviationSeries& c : curves) {
-      bus.publish(args.curves_channel, io::allan_curve_message(c, utime));
+    for (const auto& [axis_name, curve] : curves) {
+      bus.publish(args.curves_channel, io::allan_curve_message(axis_name, curve, utime));
     }
     if (drift) bus.publish(args.drift_channel, io::drift_prediction_message(*drift, utime));
   }

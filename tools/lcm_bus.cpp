@@ -32,23 +32,4 @@ std::int64_t now_utime_us() {
       .count();
 }
 
-std::vector<io::DeviationSeries> oadev_series(const std::vector<pipeline::AxisAnalysis>& axes) {
-  std::vector<io::DeviationSeries> out;
-  for (const pipeline::AxisAnalysis& a : axes) {
-    io::DeviationSeries s;
-    s.axis_name = a.model.name;
-    s.statistic = "oadev";
-    s.unit = a.model.gyro ? "rad/s" : "m/s^2";
-    s.confidence = a.oadev.confidence;
-    for (const auto& p : a.oadev.points) {
-      s.tau_s.push_back(p.tau_s);
-      s.deviation.push_back(p.value);
-      s.ci_low.push_back(p.ci_low);
-      s.ci_high.push_back(p.ci_high);
-    }
-    out.push_back(std::move(s));
-  }
-  return out;
-}
-
 }  // namespace imunoise::tools

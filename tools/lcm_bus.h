@@ -39,7 +39,4 @@ class LcmBus {
 /// Wall-clock time [µs since the Unix epoch], the utime of published messages.
 std::int64_t now_utime_us();
 
-/// The OADEV curve of every analysed axis as allan_curve_t series (statistic "oadev").
-std::vector<io::DeviationSeries> oadev_series(const std::vector<pipeline::AxisAnalysis>& axes);
-
 }  // namespace imunoise::tools

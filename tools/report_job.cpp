@@ -16,8 +16,10 @@
 
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "io/allan_csv.h"
 #include "io/atomic_output.h"
 #include "io/noise_model_yaml.h"
+#include "io/psd_csv.h"
 #include "io/result_files.h"
 #include "models/datasheet_units.h"
 #include "models/noise_model.h"
@@ -36,8 +38,8 @@ using nlohmann::json;
 struct SavedResults {
   fs::path dir;
   std::optional<models::NoiseModel> model;
-  std::vector<io::DeviationSeries> allan;
-  std::vector<io::PsdSeries> psd;
+  std::optional<io::AllanTable> allan;
+  std::optional<io::PsdTable> psd;
   std::optional<json> sampling;
   fs::path drift_dir;  ///< empty = no drift results
   std::optional<json> drift_summary;
@@ -296,15 +298,6 @@ void add_sensor_figures(const SavedResults& r, report::PageSection& section, Mak
   }
 }
 
-std::vector<report::DeviationData> oadev_curves(const SavedResults& r) {
-  std::vector<report::DeviationData> out;
-  for (const io::DeviationSeries& s : r.allan) {
-    if (s.statistic != "oadev") continue;
-    out.push_back({s.axis_name, s.tau_s, s.deviation, s.ci_low, s.ci_high});
-  }
-  return out;
-}
-
 std::vector<double> numbers_of(const json& j, const char* key) {
   std::vector<double> out;
   if (!j.contains(key) || !j[key].is_array()) return out;
@@ -447,21 +440,17 @@ ReportOutput write_report(const std::string& dir) {
     if (!gm.rows.empty()) s.tables.push_back(std::move(gm));
     page.sections.push_back(std::move(s));
   }
-  if (r.model && !r.allan.empty()) {
+  if (r.model && r.allan) {
     report::PageSection s{"allan", "Allan deviation", {}, {}, {}, {}, {}};
-    const auto curves = oadev_curves(r);
     add_sensor_figures(
-        r, s, [&](bool gyro) { return report::allan_figure(gyro, curves, *r.model); }, files);
+        r, s, [&](bool gyro) { return report::allan_figure(gyro, r.allan->axes, *r.model); },
+        files);
     page.sections.push_back(std::move(s));
   }
-  if (!r.psd.empty()) {
+  if (r.psd) {
     report::PageSection s{"psd", "Power spectral density", {}, {}, {}, {}, {}};
-    std::vector<report::PsdData> spectra;
-    for (const io::PsdSeries& p : r.psd) {
-      spectra.push_back({p.axis_name, p.frequency_hz, p.density, p.model_density});
-    }
     add_sensor_figures(
-        r, s, [&](bool gyro) { return report::psd_figure(gyro, spectra); }, files);
+        r, s, [&](bool gyro) { return report::psd_figure(gyro, r.psd->axes); }, files);
     page.sections.push_back(std::move(s));
   }
   if (!r.drift_dir.empty()) {

@@ -102,24 +102,29 @@ TEST(LcmMessages, InconsistentNoiseModelMessageIsAnInputError) {
 }
 
 TEST(LcmMessages, AllanCurveAndDriftMessagesCarryTheirSeries) {
-  DeviationSeries curve{"gyro_y",
-                        "oadev",
-                        "rad/s",
-                        0.95,
-                        {0.01, 0.1, 1.0},
-                        {3e-3, 1e-3, 3e-4},
-                        {2.9e-3, 0.9e-3, 2e-4},
-                        {3.1e-3, 1.1e-3, 4e-4}};
-  const imunoise::allan_curve_t c = encode_decode(allan_curve_message(curve, 42));
+  const std::vector<double> tau_s{0.01, 0.1, 1.0}, deviation{3e-3, 1e-3, 3e-4},
+      ci_low{2.9e-3, 0.9e-3, 2e-4}, ci_high{3.1e-3, 1.1e-3, 4e-4};
+  analysis::DeviationCurve curve;
+  curve.type = analysis::DeviationType::oadev;
+  curve.confidence = 0.95;
+  for (std::size_t i = 0; i < tau_s.size(); ++i) {
+    analysis::DeviationPoint p;
+    p.tau_s = tau_s[i];
+    p.value = deviation[i];
+    p.ci_low = ci_low[i];
+    p.ci_high = ci_high[i];
+    curve.points.push_back(p);
+  }
+  const imunoise::allan_curve_t c = encode_decode(allan_curve_message("gyro_y", curve, 42));
   EXPECT_EQ(c.axis_name, "gyro_y");
   EXPECT_EQ(c.statistic, "oadev");
   EXPECT_EQ(c.unit, "rad/s");
   EXPECT_EQ(c.confidence_level, 0.95);
   EXPECT_EQ(c.n, 3);
-  EXPECT_EQ(c.tau_s, curve.tau_s);
-  EXPECT_EQ(c.deviation, curve.deviation);
-  EXPECT_EQ(c.ci_low, curve.ci_low);
-  EXPECT_EQ(c.ci_high, curve.ci_high);
+  EXPECT_EQ(c.tau_s, tau_s);
+  EXPECT_EQ(c.deviation, deviation);
+  EXPECT_EQ(c.ci_low, ci_low);
+  EXPECT_EQ(c.ci_high, ci_high);
 
   DriftSeries drift;
   drift.time_s = {60.0, 300.0};

@@ -69,16 +69,18 @@ models::NoiseModel gyro_model() {
   return m;
 }
 
-DeviationData gyro_curve() {
-  DeviationData d;
-  d.axis_name = "gyro_x";
+io::AllanAxis gyro_curve() {
+  io::AllanAxis d;
+  d.name = "gyro_x";
   for (double tau = 0.02; tau < 2e4; tau *= 2.0) {
-    d.tau_s.push_back(tau);
     const double adev =
         std::sqrt(1e-8 / tau + 2.0 * std::log(2.0) / std::numbers::pi * 4e-10 + 9e-14 * tau / 3.0);
-    d.deviation.push_back(adev);
-    d.ci_low.push_back(0.9 * adev);
-    d.ci_high.push_back(1.1 * adev);
+    analysis::DeviationPoint p;
+    p.tau_s = tau;
+    p.value = adev;
+    p.ci_low = 0.9 * adev;
+    p.ci_high = 1.1 * adev;
+    d.oadev.points.push_back(p);
   }
   return d;
 }
@@ -106,7 +108,7 @@ TEST(AllanFigure, ModelAndTermLinesFollowTheClosedForms) {
   EXPECT_EQ(total->line, Line::solid);
   // The model spans the measured τ range.
   EXPECT_DOUBLE_EQ(total->x.front(), 0.02);
-  EXPECT_NEAR(total->x.back(), gyro_curve().tau_s.back(), 1e-9);
+  EXPECT_NEAR(total->x.back(), gyro_curve().oadev.points.back().tau_s, 1e-9);
 }
 
 TEST(AllanFigure, ReadoffPointsLieOnTheTermLinesWhereIeee952ReadsThem) {
@@ -143,16 +145,16 @@ TEST(FigureCsv, HoldsExactlyThePlottedPointsWithUnitsInTheHeader) {
   for (const Series& s : f.plot.series) points += s.x.size();
   EXPECT_EQ(lines.size(), 1 + points + f.plot.points.size());
   // The first data row is the first OADEV point with its interval, round-trip exact.
-  const DeviationData d = gyro_curve();
+  const analysis::DeviationPoint d = gyro_curve().oadev.points.front();
   EXPECT_EQ(lines[1].substr(0, lines[1].find(',')), "gyro_x oadev");
   std::vector<double> cells;
   std::istringstream row(lines[1].substr(lines[1].find(',') + 1));
   for (std::string cell; std::getline(row, cell, ',');) cells.push_back(std::stod(cell));
   ASSERT_EQ(cells.size(), 4u);
-  EXPECT_EQ(cells[0], d.tau_s[0]);
-  EXPECT_EQ(cells[1], d.deviation[0]);
-  EXPECT_EQ(cells[2], d.ci_low[0]);
-  EXPECT_EQ(cells[3], d.ci_high[0]);
+  EXPECT_EQ(cells[0], d.tau_s);
+  EXPECT_EQ(cells[1], d.value);
+  EXPECT_EQ(cells[2], d.ci_low);
+  EXPECT_EQ(cells[3], d.ci_high);
   EXPECT_EQ(lines.back().rfind("readoff: x K,3,", 0), 0u) << lines.back();
 }
 
