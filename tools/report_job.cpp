@@ -18,6 +18,7 @@
 #include "common/number_text.h"
 #include "io/allan_csv.h"
 #include "io/atomic_output.h"
+#include "io/commands_file.h"
 #include "io/noise_model_yaml.h"
 #include "io/psd_csv.h"
 #include "io/result_files.h"
@@ -366,8 +367,14 @@ std::vector<std::string> command_lines(const SavedResults& r) {
   std::sort(subdirs.begin(), subdirs.end());
   dirs.insert(dirs.end(), subdirs.begin(), subdirs.end());
   for (const fs::path& d : dirs) {
-    const std::vector<std::string> lines = read_command_file(d.string());
-    if (lines.empty()) continue;
+    std::optional<io::CommandRecord> record;
+    try {
+      record = io::read_command_file(d.string());
+    } catch (const InputError&) {
+      continue;  // a commands.txt imunoise did not write (another tool's): not ours to show
+    }
+    if (!record) continue;
+    const std::vector<std::string> lines = io::command_file_lines(*record);
     const std::string where = fs::relative(d / "commands.txt", r.dir, ec).generic_string();
     out.push_back("# " + where);
     out.insert(out.end(), lines.begin(), lines.end());
