@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "analysis/chi_square.h"
 #include "analysis/deviation.h"
 #include "analysis/noise_terms.h"
 #include "common/errors.h"
 #include "common/huge_pages.h"
+#include "common/parallel_for.h"
 #include "models/noise_simulator.h"
 
 namespace imunoise::pipeline {
@@ -61,7 +61,7 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               double tau0_s, const analysis::FitOptions& fit_options,
                               const BootstrapOptions& options) {
   if (points.size() != m_list.size()) {
-    throw std::invalid_argument("bootstrap_fit: points and m_list differ in size");
+    throw ContractViolation("bootstrap_fit: points and m_list differ in size");
   }
   if (options.replicates < 2) throw InputError("bootstrap: need at least 2 replicates");
   if (n_samples < 2 || !(tau0_s > 0.0)) throw InputError("bootstrap: empty record");
@@ -76,57 +76,59 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
     bool ok = false;
   };
   std::vector<Replicate> results(static_cast<std::size_t>(options.replicates));
-  std::atomic<int> next{0};
   std::atomic<int> finished{0};  // for the progress callback only
 
   // Only the τ the fit used: refit_fixed_terms reads no other point.
   std::vector<std::int64_t> used_m;
   for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
 
-  const auto worker = [&] {
-    // One array per worker, the record's size: the simulated rate, turned into phase in
-    // place, so a worker holds 8 bytes per sample (a 24 h record at 1 kHz: 0.7 GB), not 16.
+  // Per worker: one array the record's size, the simulated rate turned into phase in place,
+  // so a worker holds 8 bytes per sample (a 24 h record at 1 kHz: 0.7 GB), not 16; and the
+  // fit points the replicate's AVAR is written into.
+  struct Scratch {
     std::vector<double> samples;
-    reserve_huge_pages(samples, static_cast<std::size_t>(n_samples) + 1);
-    std::vector<analysis::FitPoint> replicate_points(points.begin(), points.end());
-    for (int r = next++; r < options.replicates; r = next++) {
-      models::SimulationOptions sim;
-      sim.sample_rate_hz = 1.0 / tau0_s;
-      sim.seed = replicate_seed(options.seed, r);
-      sim.flicker_band = {tau0_s, std::max(duration_s, 2.0 * tau0_s)};
-      models::ChannelSimulator simulator(channel, sim, 0);
-      samples.resize(static_cast<std::size_t>(n_samples));
-      simulator.next_block(samples);
-      analysis::phase_from_rate_in_place(samples, tau0_s);
-      // All of them in the shared passes of the OAVAR kernel, equal bit for bit to one
-      // allan_family_variance per τ.
-      const std::vector<analysis::VarianceEstimate> avar =
-          analysis::overlapping_variances(analysis::DeviationType::oadev, samples, used_m, tau0_s);
-      for (std::size_t i = 0; i < fit.used.size(); ++i) {
-        replicate_points[fit.used[i]].avar = avar[i].variance;
-      }
-      Replicate& out = results[static_cast<std::size_t>(r)];
-      try {
-        const analysis::FitResult refit =
-            analysis::refit_fixed_terms(replicate_points, fit, fit_options);
-        for (std::size_t t = 0; t < 5; ++t) out.terms[t] = refit.terms[t].value;
-        for (std::size_t j = 0; j < gm_count && j < refit.coefficients.gauss_markov.size(); ++j) {
-          out.gm_sigma.push_back(refit.coefficients.gauss_markov[j].sigma);
-          out.gm_tau.push_back(refit.coefficients.gauss_markov[j].tau_c_s);
-        }
-        out.ok = true;
-      } catch (const AnalysisError&) {
-        out.ok = false;  // counted below; a replicate the estimator cannot fit is dropped
-      }
-      report_progress(options.progress, "bootstrap", ++finished, options.replicates);
-    }
+    std::vector<analysis::FitPoint> points;
   };
-  const unsigned threads =
-      std::max(1u, std::min<unsigned>(options.threads, static_cast<unsigned>(options.replicates)));
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  const auto make_scratch = [&] {
+    Scratch s;
+    reserve_huge_pages(s.samples, static_cast<std::size_t>(n_samples) + 1);
+    s.points.assign(points.begin(), points.end());
+    return s;
+  };
+  const auto replicate = [&](Scratch& scratch, std::size_t r) {
+    models::SimulationOptions sim;
+    sim.sample_rate_hz = 1.0 / tau0_s;
+    sim.seed = replicate_seed(options.seed, static_cast<int>(r));
+    sim.flicker_band = {tau0_s, std::max(duration_s, 2.0 * tau0_s)};
+    models::ChannelSimulator simulator(channel, sim, 0);
+    std::vector<double>& samples = scratch.samples;
+    samples.resize(static_cast<std::size_t>(n_samples));
+    simulator.next_block(samples);
+    analysis::phase_from_rate_in_place(samples, tau0_s);
+    // All of them in the shared passes of the OAVAR kernel, equal bit for bit to one
+    // allan_family_variance per τ.
+    const std::vector<analysis::VarianceEstimate> avar =
+        analysis::overlapping_variances(analysis::DeviationType::oadev, samples, used_m, tau0_s);
+    for (std::size_t i = 0; i < fit.used.size(); ++i) {
+      scratch.points[fit.used[i]].avar = avar[i].variance;
+    }
+    Replicate& out = results[r];
+    try {
+      const analysis::FitResult refit =
+          analysis::refit_fixed_terms(scratch.points, fit, fit_options);
+      for (std::size_t t = 0; t < 5; ++t) out.terms[t] = refit.terms[t].value;
+      for (std::size_t j = 0; j < gm_count && j < refit.coefficients.gauss_markov.size(); ++j) {
+        out.gm_sigma.push_back(refit.coefficients.gauss_markov[j].sigma);
+        out.gm_tau.push_back(refit.coefficients.gauss_markov[j].tau_c_s);
+      }
+      out.ok = true;
+    } catch (const AnalysisError&) {
+      out.ok = false;  // counted below; a replicate the estimator cannot fit is dropped
+    }
+    report_progress(options.progress, "bootstrap", ++finished, options.replicates);
+  };
+  // Each replicate's numbers depend only on its seed, not on the thread that ran it.
+  parallel_for_with_state(results.size(), std::max(1u, options.threads), make_scratch, replicate);
 
   BootstrapResult result;
   std::array<std::vector<double>, 5> per_term;
