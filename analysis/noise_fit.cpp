@@ -358,23 +358,7 @@ FitResult make_result(std::span<const FitPoint> points, const Data& data,
           r.terms[i].contribution =
               std::max(r.terms[i].contribution, variance * basis(col, data.tau[k], hadamard) /
                                                     s.model(static_cast<Eigen::Index>(k)));
-        switch (col.term) {
-          case NoiseTerm::quantization:
-            r.coefficients.quantization = value;
-            break;
-          case NoiseTerm::white_noise:
-            r.coefficients.white_noise = value;
-            break;
-          case NoiseTerm::bias_instability:
-            r.coefficients.bias_instability = value;
-            break;
-          case NoiseTerm::random_walk:
-            r.coefficients.random_walk = value;
-            break;
-          case NoiseTerm::ramp:
-            r.coefficients.ramp = value;
-            break;
-        }
+        coefficient(r.coefficients, col.term) = value;
         break;
       }
       case ColumnKind::gauss_markov:

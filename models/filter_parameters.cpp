@@ -50,26 +50,15 @@ GaussMarkov bias_as_gm(const AxisModel& axis, double chosen_b, const FilterParam
 SensorAxisParameters one_axis(const AxisModel& axis, const FilterParameterOptions& o) {
   SensorAxisParameters p;
   p.from = axis.name;
-  const auto value = [&](NoiseTerm t) {
-    return chosen(axis.terms[static_cast<int>(t)], o.conservative);
-  };
-  p.quantization = value(NoiseTerm::quantization);
-  p.white_noise = value(NoiseTerm::white_noise);
-  p.bias_instability = value(NoiseTerm::bias_instability);
-  p.random_walk = value(NoiseTerm::random_walk);
-  p.ramp = value(NoiseTerm::ramp);
+  const auto value = [&](NoiseTerm t) { return chosen(axis.terms[t], o.conservative); };
+  for (NoiseTerm t : kNoiseTerms) coefficient(p, t) = value(t);
   p.bias_gm = bias_as_gm(axis, p.bias_instability, o);
   if (!o.conservative) {
     p.rw_only_white_noise = p.white_noise;
     p.rw_only_random_walk = p.random_walk;
     return p;
   }
-  NoiseCoefficients c;
-  c.quantization = p.quantization;
-  c.white_noise = p.white_noise;
-  c.bias_instability = p.bias_instability;
-  c.random_walk = p.random_walk;
-  c.ramp = p.ramp;
+  NoiseCoefficients c = p;  // the five chosen terms; the upper GM terms follow
   for (const auto& gm : axis.gauss_markov)
     c.gauss_markov.push_back({std::max(gm.value.sigma, gm.sigma_ci_high), gm.value.tau_c_s});
   double t = o.correction_interval_s > 0.0 ? o.correction_interval_s : axis.tau_min_adev_s;
@@ -98,13 +87,14 @@ SensorParameters combine(const std::vector<SensorAxisParameters>& axes, bool gyr
   SensorAxisParameters p;
   std::string names;
   for (const auto& a : axes) names += (names.empty() ? "" : ", ") + a.from;
-  const auto members = {&SensorAxisParameters::quantization,
-                        &SensorAxisParameters::white_noise,
-                        &SensorAxisParameters::bias_instability,
-                        &SensorAxisParameters::random_walk,
-                        &SensorAxisParameters::ramp,
-                        &SensorAxisParameters::rw_only_white_noise,
-                        &SensorAxisParameters::rw_only_random_walk};
+  using Member = double SensorAxisParameters::*;
+  const std::initializer_list<Member> members = {&SensorAxisParameters::quantization,
+                                                 &SensorAxisParameters::white_noise,
+                                                 &SensorAxisParameters::bias_instability,
+                                                 &SensorAxisParameters::random_walk,
+                                                 &SensorAxisParameters::ramp,
+                                                 &SensorAxisParameters::rw_only_white_noise,
+                                                 &SensorAxisParameters::rw_only_random_walk};
   const double n = static_cast<double>(axes.size());
   if (choice == AxisChoice::worst) {
     p.from = "largest of " + names;

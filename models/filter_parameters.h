@@ -44,10 +44,10 @@ struct FilterParameterOptions {
 };
 
 /// The numbers of one axis slot of one sensor (SI: rad… for a gyro, m/s… for an accel).
-struct SensorAxisParameters {
+/// The NoiseCoefficients part holds Q, N, B, K, R as chosen (best or upper); its Gauss–Markov
+/// terms and sinusoids are not used (GM terms reach a config as bias_gm or folded).
+struct SensorAxisParameters : NoiseCoefficients {
   std::string from;  ///< which model axes gave these values, e.g. "max of gyro_x, gyro_y"
-  double quantization = 0.0, white_noise = 0.0, bias_instability = 0.0, random_walk = 0.0,
-         ramp = 0.0;  ///< Q, N, B, K, R as chosen (best or upper)
   /// B (or, without B, the largest fitted GM) as one first-order GM; σ = 0 when neither.
   GaussMarkov bias_gm;
   /// White density and RW density for a filter with only those two (Kalibr, VINS, …):

@@ -181,13 +181,7 @@ void StandardNormal::fill(std::span<double> out) {
 
 ChannelNoiseModel channel_model_from(const NoiseCoefficients& coefficients) {
   ChannelNoiseModel model;
-  model.quantization = coefficients.quantization;
-  model.white_noise = coefficients.white_noise;
-  model.bias_instability = coefficients.bias_instability;
-  model.random_walk = coefficients.random_walk;
-  model.ramp = coefficients.ramp;
-  model.gauss_markov = coefficients.gauss_markov;
-  model.sinusoids = coefficients.sinusoids;
+  static_cast<NoiseCoefficients&>(model) = coefficients;
   return model;
 }
 
@@ -226,8 +220,8 @@ void validate_channel_model(const ChannelNoiseModel& model, std::string_view whe
 // (worst case over all band positions, scanned on a fine τ grid); the sum stays within it for
 // 100·T_min ≤ τ ≤ T_max/100 and falls off outside (1.4 % near T_max/15, 6 % at T_max). Hence two
 // extra decades on each side of the band.
-std::vector<GaussMarkovTerm> flicker_gauss_markov_terms(double bias_instability, double tau_min_s,
-                                                        double tau_max_s) {
+std::vector<GaussMarkov> flicker_gauss_markov_terms(double bias_instability, double tau_min_s,
+                                                    double tau_max_s) {
   check_non_negative(bias_instability, "flicker", "bias_instability");
   if (!std::isfinite(tau_min_s) || !std::isfinite(tau_max_s) || !(tau_min_s > 0.0) ||
       !(tau_max_s > tau_min_s)) {
@@ -235,7 +229,7 @@ std::vector<GaussMarkovTerm> flicker_gauss_markov_terms(double bias_instability,
                      shortest_number_text(tau_min_s) + ", " + shortest_number_text(tau_max_s) +
                      ")");
   }
-  std::vector<GaussMarkovTerm> terms;
+  std::vector<GaussMarkov> terms;
   if (bias_instability == 0.0) return terms;
   const double sigma = bias_instability * std::sqrt(std::numbers::ln10 / std::numbers::pi);
   const int first = static_cast<int>(std::floor(std::log10(tau_min_s))) - 2;
@@ -279,7 +273,7 @@ ChannelSimulator::ChannelSimulator(const ChannelNoiseModel& model, const Simulat
   // User Gauss–Markov terms: exact point-sampled AR(1), φ = e^{−τ0/T_c},
   // q_d = σ²(1 − φ²), stationary start x_0 ~ N(0, σ²) (theory.md §4.1, §6.2).
   for (std::size_t j = 0; j < model.gauss_markov.size(); ++j) {
-    const GaussMarkovTerm& gm = model.gauss_markov[j];
+    const GaussMarkov& gm = model.gauss_markov[j];
     OuTerm term{stream(kGaussMarkovStreamBase + static_cast<std::uint32_t>(j))};
     const double e = tau0_s_ / gm.tau_c_s;
     term.phi = std::exp(-e);
@@ -302,7 +296,7 @@ ChannelSimulator::ChannelSimulator(const ChannelNoiseModel& model, const Simulat
   if (model.bias_instability > 0.0) {
     const double tau_min =
         options.flicker_band.tau_min_s > 0.0 ? options.flicker_band.tau_min_s : tau0_s_;
-    const std::vector<GaussMarkovTerm> flicker =
+    const std::vector<GaussMarkov> flicker =
         flicker_gauss_markov_terms(model.bias_instability, tau_min, options.flicker_band.tau_max_s);
     for (std::size_t j = 0; j < flicker.size(); ++j) {
       const double sigma = flicker[j].sigma;
@@ -374,7 +368,7 @@ void ChannelSimulator::next_chunk(std::span<double> out) {
       out[i] += model_.ramp * (static_cast<double>(first + static_cast<std::int64_t>(i)) * tau0_s_);
     }
   }
-  for (const SinusoidTerm& s : model_.sinusoids) {
+  for (const Sinusoid& s : model_.sinusoids) {
     // Cycles from the integer index, so the phase does not accumulate rounding over long runs.
     const double cycles_per_sample = s.frequency_hz * tau0_s_;
     for (std::size_t i = 0; i < n; ++i) {

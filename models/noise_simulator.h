@@ -24,24 +24,17 @@
 
 namespace imunoise::models {
 
-/// Term types shared with the fitted model (common/noise_coefficients.h).
-using GaussMarkovTerm = GaussMarkov;
-using SinusoidTerm = Sinusoid;
-
 /// Error model of one channel (one gyro or accelerometer axis), SI units, theory.md §1.3.
 /// All coefficients default to 0 (term off).
-struct ChannelNoiseModel {
-  double quantization = 0.0;      ///< Q: white angle noise, per-sample σ of the integrated
-                                  ///< error [rad | m/s]; AVAR 3Q²/τ²
-  double white_noise = 0.0;       ///< N: ARW/VRW density [rad/√s | m/s/√s]; AVAR N²/τ
-  double bias_instability = 0.0;  ///< B: flicker coefficient [rad/s | m/s²]; AVAR (2 ln2/π)B²
-                                  ///< over the flicker band of SimulationOptions
-  double random_walk = 0.0;       ///< K: RRW / accel RW [rad/s^{3/2} | m/s^{5/2}]; AVAR K²τ/3
-  double ramp = 0.0;              ///< R: deterministic slope [rad/s² | m/s³]; AVAR R²τ²/2
-  double constant = 0.0;          ///< constant bias plus true signal, e.g. −g₀ on a level FRD
-                                  ///< accelerometer z [rad/s | m/s²]
-  std::vector<GaussMarkovTerm> gauss_markov;  ///< point-sampled AR(1) terms
-  std::vector<SinusoidTerm> sinusoids;        ///< deterministic sinusoids
+struct ChannelNoiseModel : NoiseCoefficients {
+  // The terms (theory.md §4.1) as NoiseCoefficients holds them: Q white angle noise, per-sample
+  // σ of the integrated error [rad | m/s] (AVAR 3Q²/τ²); N ARW/VRW density [rad/√s | m/s/√s]
+  // (AVAR N²/τ); B flicker coefficient [rad/s | m/s²] (AVAR (2 ln2/π)B² over the flicker band
+  // of SimulationOptions); K RRW / accel RW [rad/s^{3/2} | m/s^{5/2}] (AVAR K²τ/3); R
+  // deterministic slope [rad/s² | m/s³] (AVAR R²τ²/2); point-sampled AR(1) Gauss–Markov terms;
+  // deterministic sinusoids.
+  double constant = 0.0;    ///< constant bias plus true signal, e.g. −g₀ on a level FRD
+                            ///< accelerometer z [rad/s | m/s²]
   double output_lsb = 0.0;  ///< step of a uniform rounding quantizer applied to the output
                             ///< [rad/s | m/s²]; 0 = off. For noise ≫ LSB it adds white rate
                             ///< noise of variance LSB²/12 per sample, i.e. N² += LSB²·τ0/12.
@@ -71,8 +64,8 @@ struct FlickerBand {
 /// ±1.04 % ripple on the ADEV; two extra decades at each end of the band keep the roll-off
 /// outside it. The slowest terms (T ≫ record) act as random turn-on biases of σ ≈ 0.86·B each.
 /// Throws InputError unless 0 < tau_min_s < tau_max_s and B ≥ 0.
-std::vector<GaussMarkovTerm> flicker_gauss_markov_terms(double bias_instability, double tau_min_s,
-                                                        double tau_max_s);
+std::vector<GaussMarkov> flicker_gauss_markov_terms(double bias_instability, double tau_min_s,
+                                                    double tau_max_s);
 
 /// splitmix64 (Steele, Lea & Flood, "Fast splittable pseudorandom number generators", OOPSLA
 /// 2014; the seeding generator Blackman & Vigna recommend for xoshiro): adds the golden gamma

@@ -68,9 +68,9 @@ double point_gauss_markov_avar(double sigma, double phi, std::int64_t n) {
 /// Bias-instability AVAR (2 ln2/π)B², i.e. ADEV 0.664·B.
 double flicker_avar(double b) { return 2.0 * std::numbers::ln2 / std::numbers::pi * b * b; }
 /// Exact AVAR of the GM sum that stands for flicker.
-double gauss_markov_sum_avar(const std::vector<GaussMarkovTerm>& terms, double tau) {
+double gauss_markov_sum_avar(const std::vector<GaussMarkov>& terms, double tau) {
   double sum = 0.0;
-  for (const GaussMarkovTerm& t : terms) sum += gauss_markov_avar(t.sigma, t.tau_c_s, tau);
+  for (const GaussMarkov& t : terms) sum += gauss_markov_avar(t.sigma, t.tau_c_s, tau);
   return sum;
 }
 /// @}
@@ -280,7 +280,7 @@ TEST(FlickerConstruction, ClosedFormAdevIsFlatAtBiasInstabilityOverBand) {
     double low, high;
   };
   for (const Band band : {Band{0.01, 7200.0}, Band{0.005, 30.0}, Band{1.0, 1.0e5}}) {
-    const std::vector<GaussMarkovTerm> terms = flicker_gauss_markov_terms(b, band.low, band.high);
+    const std::vector<GaussMarkov> terms = flicker_gauss_markov_terms(b, band.low, band.high);
     ASSERT_GE(terms.size(), 4U);
     for (std::size_t k = 1; k < terms.size(); ++k) {
       EXPECT_NEAR(terms[k].tau_c_s / terms[k - 1].tau_c_s, 10.0, 1e-9);
@@ -384,7 +384,7 @@ TEST(NoiseSimulator, BiasInstabilityAdevIsFlatAtPoint664B) {
   model.bias_instability = 1.22173e-4;  // 25.2 deg/h in rad/s (theory.md §8.2)
   SimulationOptions options = options_at(100.0, 16);
   options.flicker_band = {0.01, 1.0e4};
-  const std::vector<GaussMarkovTerm> terms =
+  const std::vector<GaussMarkov> terms =
       flicker_gauss_markov_terms(model.bias_instability, 0.01, 1.0e4);
   expect_avar_matches(
       "bias instability B", model, options, 1'000'000, 3, {1, 10, 100, 1000},
