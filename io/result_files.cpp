@@ -5,11 +5,9 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <initializer_list>
 #include <system_error>
 
 #include "common/errors.h"
-#include "common/units.h"
 #include "pipeline/recording.h"
 
 namespace imunoise::io {
@@ -25,20 +23,6 @@ std::vector<std::string> split_commas(const std::string& line) {
         line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (comma == std::string::npos) return out;
     start = comma + 1;
-  }
-}
-
-std::int64_t file_line_of_row(std::size_t row) { return static_cast<std::int64_t>(row) + 2; }
-
-/// InputError "PATH:LINE: empty cell in column 'NAME'" unless row R has a value in COLUMNS.
-void require_cells(const NumericTable& t, const std::string& path, std::size_t r,
-                   std::initializer_list<std::size_t> columns) {
-  for (std::size_t c : columns) {
-    if (!t.rows[r][c]) {
-      std::string problem = "empty cell in column '";
-      problem.append(t.columns[c]).append("'");
-      throw InputError(located_message(path, file_line_of_row(r), 0, problem));
-    }
   }
 }
 
@@ -162,50 +146,6 @@ std::vector<PsdSeries> read_psd_csv(const std::string& path) {
     out.push_back(std::move(s));
   }
   if (out.empty()) throw InputError(located_message(path, 1, 0, "no <axis>_psd_ columns found"));
-  return out;
-}
-
-DriftSeries read_drift_csv(const std::string& path) {
-  const NumericTable t = read_numeric_table(path);
-  const std::string what = "a drift_envelope.csv";
-  const std::size_t time = require_column(t, path, "time_s", what);
-  const std::size_t drms = require_column(t, path, "predicted_horizontal_drms_m", what);
-  const std::size_t roll = require_column(t, path, "predicted_roll_sigma_deg", what);
-  const std::size_t pitch = require_column(t, path, "predicted_pitch_sigma_deg", what);
-  const std::size_t heading = require_column(t, path, "predicted_heading_sigma_deg", what);
-  const auto actual = t.find("actual_rms_horizontal_error_m");
-  DriftSeries d;
-  d.height_hold = true;  // imunoise drift always holds the height (theory.md §7.2)
-  for (std::size_t r = 0; r < t.rows.size(); ++r) {
-    const auto& row = t.rows[r];
-    require_cells(t, path, r, {time, drms, roll, pitch, heading});
-    d.time_s.push_back(*row[time]);
-    d.horizontal_sigma_m.push_back(*row[drms]);
-    d.vertical_sigma_m.push_back(0.0);
-    d.attitude_sigma_rad.push_back(units::kDeg *
-                                   std::sqrt(*row[roll] * *row[roll] + *row[pitch] * *row[pitch] +
-                                             *row[heading] * *row[heading]));
-    if (actual && row[*actual]) d.actual_horizontal_m.push_back(*row[*actual]);
-  }
-  if (d.actual_horizontal_m.size() != d.time_s.size()) d.actual_horizontal_m.clear();
-  return d;
-}
-
-std::vector<DriftSegment> read_drift_segments_csv(const std::string& path) {
-  const NumericTable t = read_numeric_table(path);
-  const std::string what = "a drift_segments.csv";
-  const std::size_t segment = require_column(t, path, "segment", what);
-  const std::size_t time = require_column(t, path, "time_s", what);
-  const std::size_t horizontal = require_column(t, path, "horizontal_error_m", what);
-  std::vector<DriftSegment> out;
-  for (std::size_t r = 0; r < t.rows.size(); ++r) {
-    const auto& row = t.rows[r];
-    require_cells(t, path, r, {segment, time, horizontal});
-    const int index = static_cast<int>(*row[segment]);
-    if (out.empty() || out.back().index != index) out.push_back(DriftSegment{index, {}, {}});
-    out.back().time_s.push_back(*row[time]);
-    out.back().horizontal_error_m.push_back(*row[horizontal]);
-  }
   return out;
 }
 

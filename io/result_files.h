@@ -1,6 +1,6 @@
 /// @file
-/// @brief Reading back the CSV results imunoise writes (allan.csv, psd.csv, drift_envelope.csv,
-/// drift_segments.csv), for `imunoise publish` and `imunoise report`. Every reader checks the
+/// @brief Reading back the CSV results imunoise writes (allan.csv, psd.csv; the drift files are
+/// io/drift_files.h), for `imunoise publish` and `imunoise report`. Every reader checks the
 /// columns it needs and reports a bad file as InputError "FILE:LINE: problem".
 #pragma once
 
@@ -43,17 +43,5 @@ struct PsdSeries {
 
 /// The axes of psd.csv (imunoise analyze), at the rows where the axis has a value.
 std::vector<PsdSeries> read_psd_csv(const std::string& path);
-
-/// drift_envelope.csv (imunoise drift): predicted 1σ (DRMS) and the measured RMS drift.
-DriftSeries read_drift_csv(const std::string& path);
-
-/// One recorded segment of drift_segments.csv: horizontal error against time since its start.
-struct DriftSegment {
-  int index = 0;
-  std::vector<double> time_s, horizontal_error_m;
-};
-
-/// The segments of drift_segments.csv (imunoise drift), in file order.
-std::vector<DriftSegment> read_drift_segments_csv(const std::string& path);
 
 }  // namespace imunoise::io

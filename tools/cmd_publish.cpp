@@ -16,6 +16,7 @@
 
 #include "common/errors.h"
 #include "common/units.h"
+#include "io/drift_files.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "io/result_files.h"
@@ -49,8 +50,8 @@ void run_publish(const PublishArgs& args) {
   const models::NoiseModel model = io::load_model_yaml(args.model_path);
   std::vector<io::DeviationSeries> curves;
   if (!args.curves_path.empty()) curves = io::read_allan_csv(args.curves_path, model.confidence);
-  std::optional<io::DriftSeries> drift;
-  if (!args.drift_path.empty()) drift = io::read_drift_csv(args.drift_path);
+  std::optional<pipeline::DriftSeries> drift;
+  if (!args.drift_path.empty()) drift = io::read_drift_envelope_csv(args.drift_path);
 
   LcmBus bus(args.url);
   for (int k = 0; k < args.repeat; ++k) {
