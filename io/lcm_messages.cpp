@@ -188,23 +188,21 @@ imunoise::allan_curve_t allan_curve_message(const std::string& axis_name,
   return msg;
 }
 
-imunoise::drift_prediction_t drift_prediction_message(const DriftSeries& drift,
+imunoise::drift_prediction_t drift_prediction_message(const pipeline::DriftSeries& drift,
                                                       std::int64_t utime_us) {
   imunoise::drift_prediction_t msg{};
   msg.utime = utime_us;
-  msg.height_hold = drift.height_hold ? 1 : 0;
+  msg.height_hold = 1;
   const std::size_t n = drift.time_s.size();
   msg.n = static_cast<std::int32_t>(n);
   msg.time_s = drift.time_s;
-  msg.horizontal_sigma_m = drift.horizontal_sigma_m;
-  msg.vertical_sigma_m = drift.vertical_sigma_m;
-  msg.attitude_sigma_rad = drift.attitude_sigma_rad;
-  msg.has_actual = drift.actual_horizontal_m.size() == n && n > 0 ? 1 : 0;
-  msg.actual_horizontal_m =
-      msg.has_actual ? drift.actual_horizontal_m : std::vector<double>(n, 0.0);
+  msg.horizontal_sigma_m = drift.predicted_drms_m;
+  msg.vertical_sigma_m.assign(n, 0.0);
+  msg.attitude_sigma_rad = drift.predicted_attitude_sigma_rad;
+  msg.has_actual = drift.recorded_rms_m.size() == n && n > 0 ? 1 : 0;
+  msg.actual_horizontal_m = msg.has_actual ? drift.recorded_rms_m : std::vector<double>(n, 0.0);
   // Arrays the caller left short would make encode() read past them: pad with zeros.
   msg.horizontal_sigma_m.resize(n, 0.0);
-  msg.vertical_sigma_m.resize(n, 0.0);
   msg.attitude_sigma_rad.resize(n, 0.0);
   return msg;
 }

@@ -15,6 +15,7 @@
 #include "analysis/deviation.h"
 #include "io/imu_samples.h"
 #include "models/noise_model.h"
+#include "pipeline/drift_series.h"
 
 namespace imunoise::io {
 
@@ -44,14 +45,12 @@ imunoise::allan_curve_t allan_curve_message(const std::string& axis_name,
                                             const analysis::DeviationCurve& curve,
                                             std::int64_t utime_us);
 
-/// Predicted drift (and the measured one, if any) as a drift_prediction_t. All vectors have
-/// the length of time_s (actual_horizontal_m may be empty: has_actual = false).
-struct DriftSeries {
-  bool height_hold = true;
-  std::vector<double> time_s, horizontal_sigma_m, vertical_sigma_m, attitude_sigma_rad;
-  std::vector<double> actual_horizontal_m;
-};
-imunoise::drift_prediction_t drift_prediction_message(const DriftSeries& drift,
+/// Predicted drift (and the recorded one, if any) as a drift_prediction_t: time_s,
+/// horizontal_sigma_m = predicted_drms_m, attitude_sigma_rad = predicted_attitude_sigma_rad,
+/// actual_horizontal_m = recorded_rms_m (has_actual = false when that is empty), height hold
+/// with vertical_sigma_m 0 (the drift analysis holds the vertical channel, theory.md §7.2).
+/// Vectors shorter than time_s are padded with zeros.
+imunoise::drift_prediction_t drift_prediction_message(const pipeline::DriftSeries& drift,
                                                       std::int64_t utime_us);
 
 }  // namespace imunoise::io

@@ -101,48 +101,4 @@ std::size_t require_column(const NumericTable& table, const std::string& path,
   throw InputError(located_message(path, 1, 0, problem));
 }
 
-DriftSeries read_drift_csv(const std::string& path) {
-  const NumericTable t = read_numeric_table(path);
-  const std::string what = "a drift_envelope.csv";
-  const std::size_t time = require_column(t, path, "time_s", what);
-  const std::size_t drms = require_column(t, path, "predicted_horizontal_drms_m", what);
-  const std::size_t roll = require_column(t, path, "predicted_roll_sigma_deg", what);
-  const std::size_t pitch = require_column(t, path, "predicted_pitch_sigma_deg", what);
-  const std::size_t heading = require_column(t, path, "predicted_heading_sigma_deg", what);
-  const auto actual = t.find("actual_rms_horizontal_error_m");
-  DriftSeries d;
-  d.height_hold = true;  // imunoise drift always holds the height (theory.md §7.2)
-  for (std::size_t r = 0; r < t.rows.size(); ++r) {
-    const auto& row = t.rows[r];
-    require_cells(t, path, r, {time, drms, roll, pitch, heading});
-    d.time_s.push_back(*row[time]);
-    d.horizontal_sigma_m.push_back(*row[drms]);
-    d.vertical_sigma_m.push_back(0.0);
-    d.attitude_sigma_rad.push_back(units::kDeg *
-                                   std::sqrt(*row[roll] * *row[roll] + *row[pitch] * *row[pitch] +
-                                             *row[heading] * *row[heading]));
-    if (actual && row[*actual]) d.actual_horizontal_m.push_back(*row[*actual]);
-  }
-  if (d.actual_horizontal_m.size() != d.time_s.size()) d.actual_horizontal_m.clear();
-  return d;
-}
-
-std::vector<DriftSegment> read_drift_segments_csv(const std::string& path) {
-  const NumericTable t = read_numeric_table(path);
-  const std::string what = "a drift_segments.csv";
-  const std::size_t segment = require_column(t, path, "segment", what);
-  const std::size_t time = require_column(t, path, "time_s", what);
-  const std::size_t horizontal = require_column(t, path, "horizontal_error_m", what);
-  std::vector<DriftSegment> out;
-  for (std::size_t r = 0; r < t.rows.size(); ++r) {
-    const auto& row = t.rows[r];
-    require_cells(t, path, r, {segment, time, horizontal});
-    const int index = static_cast<int>(*row[segment]);
-    if (out.empty() || out.back().index != index) out.push_back(DriftSegment{index, {}, {}});
-    out.back().time_s.push_back(*row[time]);
-    out.back().horizontal_error_m.push_back(*row[horizontal]);
-  }
-  return out;
-}
-
 }  // namespace imunoise::io

@@ -1,7 +1,6 @@
 /// @file
-/// @brief The numeric CSV tables of imunoise's own results, and the readers of
-/// drift_envelope.csv and drift_segments.csv (allan.csv: io/allan_csv.h, psd.csv: io/psd_csv.h),
-/// for `imunoise publish` and `imunoise report`. Every reader checks the
+/// @brief The numeric CSV tables of imunoise's own results, read with located errors by the
+/// readers of io/allan_csv.h, io/psd_csv.h and io/drift_files.h. Every reader checks the
 /// columns it needs and reports a bad file as InputError "FILE:LINE: problem".
 #pragma once
 
@@ -12,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "io/lcm_messages.h"
 
 namespace imunoise::io {
 
@@ -40,17 +38,5 @@ inline std::int64_t file_line_of_row(std::size_t row) { return static_cast<std::
 /// of COLUMNS.
 void require_cells(const NumericTable& t, const std::string& path, std::size_t r,
                    std::initializer_list<std::size_t> columns);
-
-/// drift_envelope.csv (imunoise drift): predicted 1σ (DRMS) and the measured RMS drift.
-DriftSeries read_drift_csv(const std::string& path);
-
-/// One recorded segment of drift_segments.csv: horizontal error against time since its start.
-struct DriftSegment {
-  int index = 0;
-  std::vector<double> time_s, horizontal_error_m;
-};
-
-/// The segments of drift_segments.csv (imunoise drift), in file order.
-std::vector<DriftSegment> read_drift_segments_csv(const std::string& path);
 
 }  // namespace imunoise::io

@@ -45,13 +45,21 @@ double gyro_bias_sigma(const ins::InsSensorNoise& noise, double align_s) {
   return worst;
 }
 
+/// One segment as run_segment() gives it: the navigation errors and the alignment.
+struct SegmentRun {
+  DriftSegment drift;
+  ins::Alignment alignment;
+};
+
 /// Aligns and free-runs the segment that starts at sample FIRST; the navigation errors on
-/// the output grid (every STRIDE samples, COUNT points).
-SegmentDrift run_segment(const ImuSeries& s, std::size_t first, std::size_t n_align,
-                         std::size_t stride, std::size_t count, const DriftOptions& o,
-                         double gyro_sigma) {
-  SegmentDrift out;
+/// the output grid TIME_S (every STRIDE samples, COUNT points).
+SegmentRun run_segment(const ImuSeries& s, std::size_t first, std::size_t n_align,
+                       std::size_t stride, std::size_t count, const std::vector<double>& time_s,
+                       const DriftOptions& o, double gyro_sigma) {
+  SegmentRun run;
+  DriftSegment& out = run.drift;
   out.start_s = static_cast<double>(first) * s.sample_period_s;
+  out.time_s = time_s;
   Eigen::Vector3d mean_w = Eigen::Vector3d::Zero(), mean_f = Eigen::Vector3d::Zero();
   for (std::size_t k = first; k < first + n_align; ++k) {
     for (int i = 0; i < 3; ++i) {
@@ -69,15 +77,15 @@ SegmentDrift run_segment(const ImuSeries& s, std::size_t first, std::size_t n_al
   input.given_heading_rad = o.heading_rad;
   input.given_heading_sigma_rad = o.heading_sigma_rad;
   input.gyro_bias_sigma_rad_per_s = gyro_sigma;
-  out.alignment = ins::coarse_alignment(input);
+  run.alignment = ins::coarse_alignment(input);
 
   ins::NavState start;
   start.latitude_rad = o.latitude_rad;
   start.longitude_rad = o.longitude_rad;
   start.height_m = o.height_m;
-  start.q_bn = out.alignment.q_bn;
+  start.q_bn = run.alignment.q_bn;
   ins::StrapdownNavigator navigator(start, ins::MechanizationOptions{});
-  const Eigen::Vector3d bias = out.alignment.gyro_bias_estimate_rad_per_s;
+  const Eigen::Vector3d bias = run.alignment.gyro_bias_estimate_rad_per_s;
   out.position_error_ne_m.reserve(count);
   out.velocity_error_horizontal_m_per_s.reserve(count);
   out.attitude_error_ned_rad.reserve(count);
@@ -96,7 +104,7 @@ SegmentDrift run_segment(const ImuSeries& s, std::size_t first, std::size_t n_al
     const Eigen::AngleAxisd change(nav.q_bn * start.q_bn.conjugate());
     out.attitude_error_ned_rad.push_back(change.angle() * change.axis());
   }
-  return out;
+  return run;
 }
 
 struct Grid {
@@ -107,7 +115,8 @@ Grid make_grid(double dt, const DriftOptions& o) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("sample period must be > 0");
   for (double v : {o.align_s, o.navigation_s, o.output_step_s})
     if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError("--align, --segment and the output step must be > 0 s");
+      throw InputError(
+          "the alignment window, the segment length and the output step must be > 0 s");
   if (!(o.warmup_s >= 0.0)) throw InputError("the warm-up must be ≥ 0 s");
   Grid g;
   g.n_align = whole_steps(o.align_s, dt, "the alignment window");
@@ -217,10 +226,10 @@ DriftAnalysis analyze_drift(const ImuSeries& s, const ins::InsSensorNoise& noise
   const std::size_t available = s.size() > warmup ? s.size() - warmup : 0;
   const std::size_t segments = available / per_segment;
   if (segments < 2)
-    throw InputError("the recording holds " + std::to_string(segments) + " segment(s) of " +
-                     shortest_number_text(o.align_s + o.navigation_s) +
-                     " s (alignment + navigation); at least 2 are needed — shorten --segment "
-                     "or --align");
+    throw DriftRefused(DriftRefusal::too_few_segments,
+                       "the recording holds " + std::to_string(segments) + " segment(s) of " +
+                           shortest_number_text(o.align_s + o.navigation_s) +
+                           " s (alignment + navigation); at least 2 are needed");
   const double gyro_sigma = gyro_bias_sigma(noise, o.align_s);
 
   DriftAnalysis out;
@@ -229,11 +238,13 @@ DriftAnalysis analyze_drift(const ImuSeries& s, const ins::InsSensorNoise& noise
   const auto segment_count = static_cast<std::int64_t>(segments);
   report_progress(o.progress, "segments", 0, segment_count);
   for (std::size_t m = 0; m < segments; ++m) {
-    out.segments.push_back(
-        run_segment(s, warmup + m * per_segment, g.n_align, g.stride, g.count, o, gyro_sigma));
+    SegmentRun run = run_segment(s, warmup + m * per_segment, g.n_align, g.stride, g.count,
+                                 out.time_s, o, gyro_sigma);
+    out.segments.push_back(std::move(run.drift));
+    out.alignments.push_back(std::move(run.alignment));
     report_progress(o.progress, "segments", static_cast<std::int64_t>(m) + 1, segment_count);
   }
-  const auto& first = out.segments.front().alignment;
+  const auto& first = out.alignments.front();
   out.heading_note = first.heading_note;
 
   ins::DriftPredictionOptions p;
@@ -317,8 +328,10 @@ MonteCarloEnvelope monte_carlo_drift(const models::ImuNoiseModel& simulation,
     ImuSeries series;
     for (int c = 0; c < 6; ++c) series.channels[c] = data[c];
     series.sample_period_s = dt;
-    const auto seg = run_segment(series, 0, g.n_align, g.stride, g.count, one, gyro_sigma);
-    for (std::size_t p = 0; p < g.count; ++p) radial[p][r] = seg.position_error_ne_m[p].norm();
+    // No time grid: only the radial errors are kept.
+    const auto seg = run_segment(series, 0, g.n_align, g.stride, g.count, {}, one, gyro_sigma);
+    for (std::size_t p = 0; p < g.count; ++p)
+      radial[p][r] = seg.drift.position_error_ne_m[p].norm();
     report_progress(o.progress, "Monte Carlo", r + 1, runs);
   }
   MonteCarloEnvelope env;

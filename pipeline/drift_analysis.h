@@ -15,12 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.h"
 #include "common/progress.h"
 #include "common/units.h"
 #include "ins/alignment.h"
 #include "ins/drift_prediction.h"
 #include "ins/error_state_model.h"
 #include "models/noise_simulator.h"
+#include "pipeline/drift_series.h"
 
 namespace imunoise::pipeline {
 
@@ -52,6 +54,26 @@ struct DriftOptions {
   ProgressCallback progress;
 };
 
+/// Why the drift analysis refused its input, so that a caller (the CLI) can say how to get
+/// past it (a flag of its own): the pure layer only says what is wrong.
+enum class DriftRefusal {
+  missing_channel,   ///< the recording lacks one of the six IMU channels
+  time_gaps,         ///< the recording has time gaps (pipeline/drift_run.h, unless forced)
+  not_stationary,    ///< check_stationary() failed (pipeline/drift_run.h, unless forced)
+  too_few_segments,  ///< fewer than 2 segments of alignment + navigation fit
+};
+
+/// An InputError of the drift analysis with its DriftRefusal.
+class DriftRefused : public InputError {
+ public:
+  DriftRefused(DriftRefusal reason, const std::string& message)
+      : InputError(message), reason_(reason) {}
+  DriftRefusal reason() const noexcept { return reason_; }
+
+ private:
+  DriftRefusal reason_;
+};
+
 /// Result of the stationarity check (a moving IMU cannot be judged by a noise model).
 struct MotionCheck {
   bool stationary = true;
@@ -70,17 +92,6 @@ struct MotionCheck {
 /// fails at least one of them; a MEMS at rest passes them all with margin.
 MotionCheck check_stationary(const ImuSeries& series, const ins::InsSensorNoise& noise);
 
-/// One segment: its alignment and the actual errors on the output grid.
-struct SegmentDrift {
-  double start_s = 0.0;  ///< start of its alignment window in the recording [s]
-  ins::Alignment alignment;
-  std::vector<Eigen::Vector2d> position_error_ne_m;  ///< [north, east] at each output time
-  std::vector<double> velocity_error_horizontal_m_per_s;
-  /// Attitude change since the end of the alignment, as the small rotation δψ resolved in NED
-  /// [rad] (north, east, down): the truth is at rest, so any change is error.
-  std::vector<Eigen::Vector3d> attitude_error_ned_rad;
-};
-
 /// Consistency of actual and predicted drift at one time (theory.md §7.7).
 struct DriftConsistency {
   double time_s = 0.0;
@@ -92,14 +103,20 @@ struct DriftConsistency {
   /// Fraction of segments inside the 1σ, 2σ, 3σ ellipses; expected 1 − e^{−k²/2} =
   /// 0.393, 0.865, 0.989 for Gaussian 2-D errors.
   std::array<double, 3> coverage{};
+  /// The coverage expected of Gaussian 2-D errors, 1 − e^{−k²/2} to four digits.
+  std::array<double, 3> expected_coverage{0.3935, 0.8647, 0.9889};
   /// RMS actual / predicted DRMS, and the 95 % interval of the true ratio from χ²_{2M}
   double rms_ratio = 0.0, rms_ratio_ci_low = 0.0, rms_ratio_ci_high = 0.0;
+  /// The Monte Carlo radial RMS and 95th percentile at time_s [m]: set by run_drift()
+  /// (pipeline/drift_run.h) when it ran the Monte Carlo, absent otherwise.
+  std::optional<double> monte_carlo_radial_rms_m, monte_carlo_radial_p95_m;
 };
 
 struct DriftAnalysis {
   std::vector<double> time_s;  ///< output grid: output_step_s, 2·output_step_s, … navigation_s
-  ins::DriftPrediction prediction;  ///< on time_s, for the alignment protocol of the segments
-  std::vector<SegmentDrift> segments;
+  ins::DriftPrediction prediction;     ///< on time_s, for the alignment protocol of the segments
+  std::vector<DriftSegment> segments;  ///< each on time_s
+  std::vector<ins::Alignment> alignments;     ///< of each segment, in the order of segments
   std::vector<DriftConsistency> consistency;  ///< at report_times_s
   std::string heading_note;                   ///< how the first segment got its heading
 };
@@ -110,8 +127,9 @@ struct DriftAnalysis {
 /// NED mechanization with height hold from the aligned attitude, recording the horizontal
 /// position and velocity error (truth: at rest at the start point). The prediction is
 /// ins::predict_stationary_drift of NOISE with the same alignment protocol.
-/// @throws InputError with a clear message when the options are inconsistent or the
-///   recording holds fewer than 2 segments; AnalysisError passes through from the alignment.
+/// @throws InputError with a clear message when the options are inconsistent, DriftRefused
+///   (too_few_segments) when the recording holds fewer than 2 segments; AnalysisError passes
+///   through from the alignment.
 DriftAnalysis analyze_drift(const ImuSeries& series, const ins::InsSensorNoise& noise,
                             const DriftOptions& options);
 

@@ -323,7 +323,8 @@ Figure psd_figure(bool gyro, const std::vector<io::PsdAxis>& spectra) {
   return f;
 }
 
-Figure drift_figure(const DriftData& drift) {
+Figure drift_figure(const pipeline::DriftSeries& drift,
+                    const std::vector<pipeline::DriftSegment>& segments) {
   Figure f;
   f.name = "drift-horizontal";
   f.x_column = "time_s";
@@ -332,12 +333,10 @@ Figure drift_figure(const DriftData& drift) {
   f.plot.title = "Free-inertial horizontal drift: recorded segments vs the model";
   f.plot.x = {"time since segment start [s]", Scale::log10, {}, {}};
   f.plot.y = {"horizontal position error [m]", Scale::log10, {}, {}};
-  for (std::size_t k = 0; k < drift.segment_time_s.size(); ++k) {
+  for (std::size_t k = 0; k < segments.size(); ++k) {
     Series s;
-    if (k == 0) {
-      s.name = "recorded segments (" + std::to_string(drift.segment_time_s.size()) + ")";
-    }
-    thin_for_log_axis(drift.segment_time_s[k], drift.segment_horizontal_m[k], s.x, s.y);
+    if (k == 0) s.name = "recorded segments (" + std::to_string(segments.size()) + ")";
+    thin_for_log_axis(segments[k].time_s, segments[k].horizontal_error_m(), s.x, s.y);
     s.color = 5;
     s.line_width = 0.6;
     add_series(f, std::move(s), "segment " + std::to_string(k));

@@ -1,8 +1,9 @@
 /// @file
 /// @brief The report's figures, built from analysis results (pure: numbers in, Plot out):
 /// Allan deviation per sensor with the fitted model, its terms and the IEEE-952 read-off
-/// points; PSD per sensor with the model PSD; recorded drift against the predicted envelope;
-/// the sampling intervals and gaps. Each Figure also gives the CSV of exactly what it plots.
+/// points; PSD per sensor with the model PSD; recorded drift against the predicted envelope
+/// (pipeline/drift_series.h); the sampling intervals and gaps. Each Figure also gives the CSV of
+/// exactly what it plots.
 #pragma once
 
 #include <string>
@@ -11,6 +12,7 @@
 #include "io/allan_csv.h"
 #include "io/psd_csv.h"
 #include "models/noise_model.h"
+#include "pipeline/drift_series.h"
 #include "report/svg_plot.h"
 
 namespace imunoise::report {
@@ -43,16 +45,12 @@ Figure allan_figure(bool gyro, const std::vector<io::AllanAxis>& curves,
 /// "psd-gyro" / "psd-accel": the log-binned PSD of each axis (solid) and the model (dashed).
 Figure psd_figure(bool gyro, const std::vector<io::PsdAxis>& spectra);
 
-/// Recorded free-inertial drift and the model's prediction against time.
-struct DriftData {
-  std::vector<double> time_s, predicted_drms_m, recorded_rms_m;           ///< recorded may be empty
-  std::vector<std::vector<double>> segment_time_s, segment_horizontal_m;  ///< per segment
-};
-
 /// "drift-horizontal": each recorded segment's horizontal error (thin; thinned to ~120 points
-/// evenly spaced in log time, which draw the same), their RMS, and the predicted 1σ (DRMS)
-/// and 3σ envelopes, on log-log axes.
-Figure drift_figure(const DriftData& drift);
+/// evenly spaced in log time, which draw the same), their RMS (DRIFT.recorded_rms_m, when
+/// not empty), and the predicted 1σ (DRMS) and 3σ envelopes, on log-log axes. Only the
+/// horizontal parts of DRIFT are drawn.
+Figure drift_figure(const pipeline::DriftSeries& drift,
+                    const std::vector<pipeline::DriftSegment>& segments);
 
 /// "sampling-intervals": histogram of the regular sample intervals [ms] as stems at the bin
 /// centres (log count axis; empty bins left out), with the median marked.

@@ -3,26 +3,26 @@
 /// recording (theory.md §7.6–7.7): segments of the recording aligned and free-run through the
 /// strapdown navigator, the covariance prediction of the model with the same protocol, a
 /// Monte Carlo envelope of the model, and the consistency statistics — CSV + JSON in DIR.
+/// Here: the flags, reading the model and the recording, the printed summary; the job is
+/// pipeline/drift_run.h, the files io/drift_files.h.
 #include <CLI/CLI.hpp>
-#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <sstream>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <vector>
 
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "common/progress.h"
 #include "common/units.h"
-#include "ins/noise_from_model.h"
-#include "io/atomic_output.h"
-#include "io/csv_reader.h"
+#include "io/drift_files.h"
 #include "io/noise_model_yaml.h"
-#include "models/noise_simulator.h"
-#include "pipeline/drift_analysis.h"
+#include "pipeline/drift_run.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
 #include "tools/gm_convention_option.h"
@@ -59,21 +59,26 @@ struct DriftArgs {
   Verbosity verbosity;
 };
 
-/// TIMES gets the wall time of each computing stage (the caller adds the outputs).
-void run_drift(DriftArgs a, StageTimes& times) {
-  ProgressBar bar("drift", progress_wanted(a.verbosity));
-  if (a.location.size() != 3)
-    throw InputError("--location: expected LAT,LON,H (deg, deg, m), got " +
-                     std::to_string(a.location.size()) + " values");
-  const auto model = io::load_model_yaml(a.model_path);
-  ins::InsNoiseOptions noise_options;
-  noise_options.gm_convention = gm_conventions().at(a.gm_convention);
-  const auto noise = ins::ins_sensor_noise(model, noise_options);
+/// The flag that gets past a refusal of the drift analysis, appended to its message.
+std::string how_to_proceed(pipeline::DriftRefusal reason) {
+  switch (reason) {
+    case pipeline::DriftRefusal::missing_channel:
+      return " (map it with --config or the column flags)";
+    case pipeline::DriftRefusal::time_gaps:
+      return " (use --force to run anyway)";
+    case pipeline::DriftRefusal::not_stationary:
+      return " — use --force to run it anyway";
+    case pipeline::DriftRefusal::too_few_segments:
+      return " — shorten --segment or --align";
+  }
+  return "";
+}
 
-  pipeline::DriftOptions o;
-  o.latitude_rad = a.location[0] * units::kDeg;
-  o.longitude_rad = a.location[1] * units::kDeg;
-  o.height_m = a.location[2];
+/// The flags as run_drift's options (durations parsed, report times beyond the segment left
+/// out: the default 60,300,600 with a shorter --segment).
+pipeline::DriftRunOptions drift_options(const DriftArgs& a) {
+  pipeline::DriftRunOptions o;
+  o.location = {a.location[0], a.location[1], a.location[2], a.location_given};
   if (a.heading_deg) o.heading_rad = *a.heading_deg * units::kDeg;
   o.heading_sigma_rad = a.heading_sigma_deg * units::kDeg;
   o.align_s = parse_duration_s(a.align, "--align");
@@ -84,162 +89,29 @@ void run_drift(DriftArgs a, StageTimes& times) {
   for (double t : a.report_times_s)
     if (t <= o.navigation_s) o.report_times_s.push_back(t);
   if (o.report_times_s.empty()) o.report_times_s.push_back(o.navigation_s);
+  o.gm_convention = gm_conventions().at(a.gm_convention);
+  o.monte_carlo_runs = a.monte_carlo;
+  o.seed = a.seed;
+  o.force = a.force;
+  o.model_path = a.model_path;
+  return o;
+}
 
-  const io::InputConfig config = resolve_input_config(a.flags, a.config_path);
-  const pipeline::Recording recording = read_input_recording(a.file, config, a.lcm, bar.callback());
-  times.mark("read");
-  pipeline::ImuSeries series;
-  series.sample_period_s = recording.sample_period_s;
-  for (int c = 0; c < 6; ++c) {
-    const pipeline::Channel* channel = recording.find_channel(pipeline::kImuChannelNames[c]);
-    if (channel == nullptr)
-      throw InputError(a.file + ": drift needs all six channels; " + pipeline::kImuChannelNames[c] +
-                       " is missing (map it with --config or the column flags)");
-    series.channels[c] = channel->values;
-  }
-  if (recording.report.timing.gap_count > 0 && !a.force)
-    throw InputError(a.file + ": the recording has " +
-                     std::to_string(recording.report.timing.gap_count) +
-                     " time gap(s); segments across a gap would navigate through missing data "
-                     "(use --force to run anyway)");
-
-  const auto motion = pipeline::check_stationary(series, noise);
-  if (!motion.stationary && !a.force)
-    throw InputError(a.file + ": the IMU is not stationary (" + motion.reason +
-                     "); drift analysis compares free-inertial drift at rest with the noise "
-                     "model — use --force to run it anyway");
-
-  o.progress = bar.callback();
-  const auto drift = pipeline::analyze_drift(series, noise, o);
-  times.mark("segments and prediction");
-  std::optional<pipeline::MonteCarloEnvelope> mc;
-  if (a.monte_carlo > 0) {
-    models::ImuNoiseModel simulation;
-    for (int i = 0; i < 3; ++i) {
-      if (const auto* g = model.find_axis(pipeline::kImuChannelNames[i]))
-        simulation.gyro[i] = models::channel_model_from(g->coefficients());
-      if (const auto* f = model.find_axis(pipeline::kImuChannelNames[3 + i]))
-        simulation.accel[i] = models::channel_model_from(f->coefficients());
-    }
-    models::FlickerBand band;
-    band.tau_max_s = std::max(1e4, 10.0 * (o.align_s + o.navigation_s));
-    mc = pipeline::monte_carlo_drift(simulation, band, noise, series.sample_period_s, o,
-                                     a.monte_carlo, a.seed);
-    times.mark("Monte Carlo");
-  }
-  bar.finish();  // before any other output: it starts on a clean line
-
-  std::error_code ec;
-  std::filesystem::create_directories(a.output, ec);
-  if (ec) throw InputError(a.output + ": cannot create the directory: " + ec.message());
-  const std::filesystem::path dir(a.output);
-
-  std::ostringstream seg;
-  seg << "segment,start_s,time_s,north_error_m,east_error_m,horizontal_error_m,"
-         "horizontal_velocity_error_m_per_s,attitude_error_north_deg,attitude_error_east_deg,"
-         "attitude_error_down_deg\n";
-  for (std::size_t k = 0; k < drift.segments.size(); ++k) {
-    const auto& s = drift.segments[k];
-    for (std::size_t i = 0; i < drift.time_s.size(); ++i) {
-      const auto& e = s.position_error_ne_m[i];
-      seg << k << ',' << shortest_number_text(s.start_s) << ','
-          << shortest_number_text(drift.time_s[i]) << ',' << shortest_number_text(e(0)) << ','
-          << shortest_number_text(e(1)) << ',' << shortest_number_text(e.norm()) << ','
-          << shortest_number_text(s.velocity_error_horizontal_m_per_s[i]);
-      for (int a = 0; a < 3; ++a)
-        seg << ',' << shortest_number_text(s.attitude_error_ned_rad[i](a) / units::kDeg);
-      seg << '\n';
-    }
-  }
-  io::write_file_atomically((dir / "drift_segments.csv").string(), seg.str());
-
-  std::ostringstream env;
-  env << "time_s,predicted_north_sigma_m,predicted_east_sigma_m,predicted_horizontal_drms_m,"
-         "predicted_horizontal_velocity_drms_m_per_s,predicted_roll_sigma_deg,"
-         "predicted_pitch_sigma_deg,predicted_heading_sigma_deg,actual_rms_horizontal_error_m";
-  if (mc) env << ",mc_radial_p50_m,mc_radial_p68_m,mc_radial_p95_m,mc_radial_rms_m";
-  env << '\n';
-  const auto& p = drift.prediction;
-  for (std::size_t i = 0; i < drift.time_s.size(); ++i) {
-    double ss = 0.0;
-    for (const auto& s : drift.segments) ss += s.position_error_ne_m[i].squaredNorm();
-    env << shortest_number_text(drift.time_s[i]) << ',' << shortest_number_text(p.north_sigma_m[i])
-        << ',' << shortest_number_text(p.east_sigma_m[i]) << ','
-        << shortest_number_text(p.horizontal_drms_m[i]) << ','
-        << shortest_number_text(p.velocity_horizontal_drms_m_per_s[i]) << ','
-        << shortest_number_text(p.roll_sigma_rad[i] / units::kDeg) << ','
-        << shortest_number_text(p.pitch_sigma_rad[i] / units::kDeg) << ','
-        << shortest_number_text(p.heading_sigma_rad[i] / units::kDeg) << ','
-        << shortest_number_text(std::sqrt(ss / drift.segments.size()));
-    if (mc)
-      env << ',' << shortest_number_text(mc->radial_p50_m[i]) << ','
-          << shortest_number_text(mc->radial_p68_m[i]) << ','
-          << shortest_number_text(mc->radial_p95_m[i]) << ','
-          << shortest_number_text(mc->radial_rms_m[i]);
-    env << '\n';
-  }
-  io::write_file_atomically((dir / "drift_envelope.csv").string(), env.str());
-
-  nlohmann::json j;
-  j["recording"] = a.file;
-  j["model"] = a.model_path;
-  j["location"] = {{"latitude_deg", a.location[0]},
-                   {"longitude_deg", a.location[1]},
-                   {"height_m", a.location[2]},
-                   {"given", a.location_given}};
-  j["protocol"] = {{"align_s", o.align_s},
-                   {"navigation_s", o.navigation_s},
-                   {"warmup_s", o.warmup_s},
-                   {"segments", drift.segments.size()},
-                   {"vertical_channel", "height hold (theory.md §7.2): horizontal errors only"},
-                   {"gyro_bias", "estimated over each alignment window and removed (§7.3)"},
-                   {"heading", drift.heading_note},
-                   {"bias_instability_as_gm", a.gm_convention}};
-  j["motion_check"] = {{"stationary", motion.stationary},
-                       {"reason", motion.reason},
-                       {"forced", a.force && !motion.stationary},
-                       {"max_gyro_std_ratio", motion.max_gyro_std_ratio},
-                       {"max_accel_std_ratio", motion.max_accel_std_ratio},
-                       {"max_force_deviation_m_per_s2", motion.max_force_deviation_m_per_s2},
-                       {"max_tilt_change_deg", motion.max_tilt_change_rad / units::kDeg},
-                       {"max_rotation_deg_per_s", motion.max_rotation_rad_per_s / units::kDeg}};
-  nlohmann::json stats = nlohmann::json::array();
-  for (const auto& c : drift.consistency) {
-    nlohmann::json s = {{"time_s", c.time_s},
-                        {"predicted_north_sigma_m", c.predicted_north_sigma_m},
-                        {"predicted_east_sigma_m", c.predicted_east_sigma_m},
-                        {"predicted_horizontal_drms_m", c.predicted_drms_m},
-                        {"actual_rms_horizontal_error_m", c.actual_rms_m},
-                        {"mean_nees", c.mean_nees},
-                        {"mean_nees_band_95", {c.nees_band_low, c.nees_band_high}},
-                        {"nees_inside_band", c.nees_inside},
-                        {"coverage_1_2_3_sigma", c.coverage},
-                        {"expected_coverage_1_2_3_sigma", {0.3935, 0.8647, 0.9889}},
-                        {"rms_ratio", c.rms_ratio},
-                        {"rms_ratio_ci_95", {c.rms_ratio_ci_low, c.rms_ratio_ci_high}}};
-    if (mc) {
-      const auto i = static_cast<std::size_t>(std::llround(c.time_s / o.output_step_s)) - 1;
-      s["monte_carlo_radial_rms_m"] = mc->radial_rms_m[i];
-      s["monte_carlo_radial_p95_m"] = mc->radial_p95_m[i];
-    }
-    stats.push_back(s);
-  }
-  j["consistency"] = stats;
-  if (mc) j["monte_carlo"] = {{"runs", mc->runs}, {"seed", a.seed}};
-  io::write_file_atomically((dir / "drift_summary.json").string(), j.dump(2) + "\n");
-
-  std::cout << "drift: " << drift.segments.size() << " segments of "
-            << significant_number_text(o.align_s) << " s alignment + "
-            << significant_number_text(o.navigation_s) << " s navigation, height hold\n";
-  if (!a.location_given)
+/// The summary on stdout.
+void print_drift_summary(const pipeline::DriftSummary& s) {
+  const bool mc = s.monte_carlo.has_value();
+  std::cout << "drift: " << s.protocol.segments << " segments of "
+            << significant_number_text(s.protocol.align_s) << " s alignment + "
+            << significant_number_text(s.protocol.navigation_s) << " s navigation, height hold\n";
+  if (!s.location.given)
     std::cout << "location not given: assumed 45 deg N, 0 deg E, 0 m (--location LAT,LON,H)\n";
-  std::cout << "heading: " << drift.heading_note << "\n";
-  if (!motion.stationary)
-    std::cout << "WARNING: not stationary (" << motion.reason << "), forced\n";
+  std::cout << "heading: " << s.protocol.heading << "\n";
+  if (!s.motion.stationary)
+    std::cout << "WARNING: not stationary (" << s.motion.reason << "), forced\n";
   std::cout << "\n  time   predicted DRMS   actual RMS   ratio [95% CI]        mean NEES [95% band]"
                "     coverage 1/2/3 sigma (exp. 39/86/99 %)"
             << (mc ? "   MC RMS" : "") << "\n";
-  for (const auto& c : drift.consistency) {
+  for (const auto& c : s.consistency) {
     std::cout << "  " << significant_number_text(c.time_s) << " s   "
               << significant_number_text(c.predicted_drms_m) << " m   "
               << significant_number_text(c.actual_rms_m) << " m   "
@@ -253,12 +125,51 @@ void run_drift(DriftArgs a, StageTimes& times) {
               << significant_number_text(100 * c.coverage[0], 3) << "/"
               << significant_number_text(100 * c.coverage[1], 3) << "/"
               << significant_number_text(100 * c.coverage[2], 3) << " %";
-    if (mc) {
-      const auto i = static_cast<std::size_t>(std::llround(c.time_s / o.output_step_s)) - 1;
-      std::cout << "   " << significant_number_text(mc->radial_rms_m[i]) << " m";
-    }
+    if (mc) std::cout << "   " << significant_number_text(*c.monte_carlo_radial_rms_m) << " m";
     std::cout << "\n";
   }
+}
+
+/// TIMES gets the wall time of each computing stage (the caller adds the outputs).
+void run_drift(const DriftArgs& a, StageTimes& times) {
+  ProgressBar bar("drift", progress_wanted(a.verbosity));
+  if (a.location.size() != 3)
+    throw InputError("--location: expected LAT,LON,H (deg, deg, m), got " +
+                     std::to_string(a.location.size()) + " values");
+  const models::NoiseModel model = io::load_model_yaml(a.model_path);
+  const pipeline::DriftRunOptions options = drift_options(a);
+  const io::InputConfig config = resolve_input_config(a.flags, a.config_path);
+  const pipeline::Recording recording = read_input_recording(a.file, config, a.lcm, bar.callback());
+  times.mark("read");
+  // The Monte Carlo starts once the segments and the prediction are done.
+  const ProgressCallback draw = bar.callback();
+  bool monte_carlo_started = false;
+  const ProgressCallback progress = [&](std::string_view stage, std::int64_t done,
+                                        std::int64_t total) {  // single-threaded stages
+    if (stage == "Monte Carlo" && !monte_carlo_started) {
+      monte_carlo_started = true;
+      times.mark("segments and prediction");
+    }
+    if (draw) draw(stage, done, total);
+  };
+  pipeline::DriftResult result;
+  try {
+    result = pipeline::run_drift(recording, model, options, progress);
+  } catch (const pipeline::DriftRefused& e) {
+    throw InputError(e.what() + how_to_proceed(e.reason()));
+  }
+  times.mark(monte_carlo_started ? "Monte Carlo" : "segments and prediction");
+  bar.finish();  // before any other output: it starts on a clean line
+
+  std::error_code ec;
+  std::filesystem::create_directories(a.output, ec);
+  if (ec) throw InputError(a.output + ": cannot create the directory: " + ec.message());
+  const std::filesystem::path dir(a.output);
+  io::write_drift_segments_csv((dir / "drift_segments.csv").string(), result.segments);
+  io::write_drift_envelope_csv((dir / "drift_envelope.csv").string(), result.series);
+  io::write_drift_summary_json((dir / "drift_summary.json").string(), result.summary);
+
+  print_drift_summary(result.summary);
   write_command_file(dir.string());
   const ReportOutput report = write_report(dir.string());
   std::cout << "\nwrote " << (dir / "drift_segments.csv").string()

@@ -17,6 +17,7 @@
 #include "common/errors.h"
 #include "common/units.h"
 #include "io/allan_csv.h"
+#include "io/drift_files.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "io/result_files.h"
@@ -55,8 +56,8 @@ void run_publish(const PublishArgs& args) {
       curves.emplace_back(a.name, std::move(a.ohdev));
     }
   }
-  std::optional<io::DriftSeries> drift;
-  if (!args.drift_path.empty()) drift = io::read_drift_csv(args.drift_path);
+  std::optional<pipeline::DriftSeries> drift;
+  if (!args.drift_path.empty()) drift = io::read_drift_envelope_csv(args.drift_path);
 
   LcmBus bus(args.url);
   for (int k = 0; k < args.repeat; ++k) {

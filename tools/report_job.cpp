@@ -3,6 +3,7 @@
 #include "tools/report_job.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -19,6 +20,7 @@
 #include "io/allan_csv.h"
 #include "io/atomic_output.h"
 #include "io/commands_file.h"
+#include "io/drift_files.h"
 #include "io/noise_model_yaml.h"
 #include "io/psd_csv.h"
 #include "io/result_files.h"
@@ -43,9 +45,9 @@ struct SavedResults {
   std::optional<io::PsdTable> psd;
   std::optional<json> sampling;
   fs::path drift_dir;  ///< empty = no drift results
-  std::optional<json> drift_summary;
-  std::optional<io::DriftSeries> drift_envelope;
-  std::vector<io::DriftSegment> drift_segments;
+  std::optional<pipeline::DriftSummary> drift_summary;
+  std::optional<pipeline::DriftSeries> drift_envelope;
+  std::vector<pipeline::DriftSegment> drift_segments;
 };
 
 json read_json(const fs::path& path) {
@@ -89,16 +91,16 @@ SavedResults load_results(const std::string& dir_text) {
     }
   }
   if (!r.drift_dir.empty()) {
-    r.drift_summary = read_json(r.drift_dir / "drift_summary.json");
+    r.drift_summary = io::read_drift_summary_json((r.drift_dir / "drift_summary.json").string());
     if (fs::exists(r.drift_dir / "drift_envelope.csv")) {
-      r.drift_envelope = io::read_drift_csv((r.drift_dir / "drift_envelope.csv").string());
+      r.drift_envelope = io::read_drift_envelope_csv((r.drift_dir / "drift_envelope.csv").string());
     }
     if (fs::exists(r.drift_dir / "drift_segments.csv")) {
       r.drift_segments = io::read_drift_segments_csv((r.drift_dir / "drift_segments.csv").string());
     }
     // A drift directory of its own: its summary names the model it used.
-    if (!r.model && r.drift_summary->contains("model") && (*r.drift_summary)["model"].is_string()) {
-      const fs::path used = (*r.drift_summary)["model"].get<std::string>();
+    if (!r.model && !r.drift_summary->model.empty()) {
+      const fs::path used = r.drift_summary->model;
       if (fs::exists(used)) r.model = io::load_model_yaml(used.string());
     }
   }
@@ -237,35 +239,30 @@ report::Table sampling_table(const json& s) {
   return t;
 }
 
-report::Table drift_table(const json& summary) {
+report::Table drift_table(const pipeline::DriftSummary& summary) {
   report::Table t;
   t.id = "drift-table";
   t.caption = "Recorded drift vs the model's prediction at the checkpoints";
   t.header = {"time [s]",        "predicted DRMS [m]", "recorded RMS [m]",     "RMS ratio [95 %]",
               "coverage 1/2/3σ", "expected",           "mean NEES [95 % band]"};
-  const auto triple = [](const json& a) {
-    if (!a.is_array() || a.size() != 3) return std::string("—");
+  const auto triple = [](const std::array<double, 3>& a) {
     std::string out;
     for (std::size_t i = 0; i < 3; ++i) {
       if (i) out.append(" / ");
-      out.append(a[i].is_number() ? num(a[i].get<double>(), 2) : "—");
+      out.append(num(a[i], 2));
     }
     return out;
   };
-  const auto pair = [](const json& a) {
-    if (!a.is_array() || a.size() != 2 || !a[0].is_number() || !a[1].is_number())
-      return std::string("");
-    return " [" + num(a[0].get<double>(), 3) + ", " + num(a[1].get<double>(), 3) + "]";
+  // A non-finite bound (null in the file) leaves the interval out.
+  const auto pair = [](double low, double high) {
+    if (!std::isfinite(low) || !std::isfinite(high)) return std::string("");
+    return " [" + num(low, 3) + ", " + num(high, 3) + "]";
   };
-  if (!summary.contains("consistency") || !summary["consistency"].is_array()) return t;
-  for (const json& c : summary["consistency"]) {
-    t.rows.push_back(
-        {num(number_at(c, "time_s"), 6), num(number_at(c, "predicted_horizontal_drms_m")),
-         num(number_at(c, "actual_rms_horizontal_error_m")),
-         num(number_at(c, "rms_ratio"), 3) + pair(c.value("rms_ratio_ci_95", json())),
-         triple(c.value("coverage_1_2_3_sigma", json())),
-         triple(c.value("expected_coverage_1_2_3_sigma", json())),
-         num(number_at(c, "mean_nees"), 3) + pair(c.value("mean_nees_band_95", json()))});
+  for (const pipeline::DriftConsistency& c : summary.consistency) {
+    t.rows.push_back({num(c.time_s, 6), num(c.predicted_drms_m), num(c.actual_rms_m),
+                      num(c.rms_ratio, 3) + pair(c.rms_ratio_ci_low, c.rms_ratio_ci_high),
+                      triple(c.coverage), triple(c.expected_coverage),
+                      num(c.mean_nees, 3) + pair(c.nees_band_low, c.nees_band_high)});
   }
   return t;
 }
@@ -396,22 +393,15 @@ std::vector<std::string> findings(const SavedResults& r) {
     }
   }
   if (r.drift_summary) {
-    const json& s = *r.drift_summary;
-    if (s.contains("motion_check") && s["motion_check"].is_object()) {
-      const json& m = s["motion_check"];
-      if (m.value("stationary", true) == false) {
-        out.push_back("drift: the recording does not look stationary: " +
-                      m.value("reason", std::string("")));
-      }
+    const pipeline::DriftSummary& s = *r.drift_summary;
+    if (!s.motion.stationary) {
+      out.push_back("drift: the recording does not look stationary: " + s.motion.reason);
     }
-    if (s.contains("consistency") && s["consistency"].is_array()) {
-      for (const json& c : s["consistency"]) {
-        if (c.value("nees_inside_band", true)) continue;
-        out.push_back("drift at " + num(number_at(c, "time_s"), 6) + " s: mean NEES " +
-                      num(number_at(c, "mean_nees"), 3) +
-                      " is outside its 95 % band: the model's prediction does not match the "
-                      "recorded drift there");
-      }
+    for (const pipeline::DriftConsistency& c : s.consistency) {
+      if (c.nees_inside) continue;
+      out.push_back("drift at " + num(c.time_s, 6) + " s: mean NEES " + num(c.mean_nees, 3) +
+                    " is outside its 95 % band: the model's prediction does not match the "
+                    "recorded drift there");
     }
   }
   if (out.empty()) out.push_back("No data-quality or consistency problems were found.");
@@ -462,26 +452,16 @@ ReportOutput write_report(const std::string& dir) {
   }
   if (!r.drift_dir.empty()) {
     report::PageSection s{"drift", "Free-inertial drift", {}, {}, {}, {}, {}};
-    const json& summary = *r.drift_summary;
-    if (summary.contains("protocol") && summary["protocol"].is_object()) {
-      const json& p = summary["protocol"];
-      std::ostringstream text;
-      text << "Protocol: " << p.value("segments", 0) << " segments, each aligned over "
-           << num(number_at(p, "align_s")) << " s and navigated free-inertial for "
-           << num(number_at(p, "navigation_s")) << " s; "
-           << p.value("vertical_channel", std::string("")) << ".";
-      s.paragraphs.push_back(text.str());
-    }
+    const pipeline::DriftSummary& summary = *r.drift_summary;
+    const pipeline::DriftProtocol& p = summary.protocol;
+    std::ostringstream text;
+    text << "Protocol: " << p.segments << " segments, each aligned over " << num(p.align_s)
+         << " s and navigated free-inertial for " << num(p.navigation_s) << " s; "
+         << p.vertical_channel << ".";
+    s.paragraphs.push_back(text.str());
     if (r.drift_envelope) {
-      report::DriftData d;
-      d.time_s = r.drift_envelope->time_s;
-      d.predicted_drms_m = r.drift_envelope->horizontal_sigma_m;
-      d.recorded_rms_m = r.drift_envelope->actual_horizontal_m;
-      for (const io::DriftSegment& seg : r.drift_segments) {
-        d.segment_time_s.push_back(seg.time_s);
-        d.segment_horizontal_m.push_back(seg.horizontal_error_m);
-      }
-      s.figures.push_back(add_figure(r, report::drift_figure(d), files));
+      s.figures.push_back(
+          add_figure(r, report::drift_figure(*r.drift_envelope, r.drift_segments), files));
     }
     report::Table t = drift_table(summary);
     if (!t.rows.empty()) s.tables.push_back(std::move(t));

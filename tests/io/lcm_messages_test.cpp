@@ -126,22 +126,21 @@ TEST(LcmMessages, AllanCurveAndDriftMessagesCarryTheirSeries) {
   EXPECT_EQ(c.ci_low, ci_low);
   EXPECT_EQ(c.ci_high, ci_high);
 
-  DriftSeries drift;
+  pipeline::DriftSeries drift;
   drift.time_s = {60.0, 300.0};
-  drift.horizontal_sigma_m = {40.0, 5000.0};
-  drift.vertical_sigma_m = {0.0, 0.0};
-  drift.attitude_sigma_rad = {1e-4, 2e-3};
+  drift.predicted_drms_m = {40.0, 5000.0};
+  drift.predicted_attitude_sigma_rad = {1e-4, 2e-3};
   imunoise::drift_prediction_t d = encode_decode(drift_prediction_message(drift, 1));
   EXPECT_EQ(d.n, 2);
   EXPECT_TRUE(d.height_hold);
   EXPECT_FALSE(d.has_actual);
   EXPECT_EQ(d.actual_horizontal_m, std::vector<double>(2, 0.0));
-  EXPECT_EQ(d.horizontal_sigma_m, drift.horizontal_sigma_m);
-  EXPECT_EQ(d.attitude_sigma_rad, drift.attitude_sigma_rad);
-  drift.actual_horizontal_m = {35.0, 6000.0};
+  EXPECT_EQ(d.horizontal_sigma_m, drift.predicted_drms_m);
+  EXPECT_EQ(d.attitude_sigma_rad, drift.predicted_attitude_sigma_rad);
+  drift.recorded_rms_m = {35.0, 6000.0};
   d = encode_decode(drift_prediction_message(drift, 1));
   EXPECT_TRUE(d.has_actual);
-  EXPECT_EQ(d.actual_horizontal_m, drift.actual_horizontal_m);
+  EXPECT_EQ(d.actual_horizontal_m, drift.recorded_rms_m);
 }
 
 void keep_model(const lcm::ReceiveBuffer*, const std::string&, const imunoise::noise_model_t* m,

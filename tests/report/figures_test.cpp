@@ -159,13 +159,15 @@ TEST(FigureCsv, HoldsExactlyThePlottedPointsWithUnitsInTheHeader) {
 }
 
 TEST(DriftFigure, ThreeSigmaIsThreeTimesTheDrms) {
-  DriftData d;
+  pipeline::DriftSeries d;
   d.time_s = {1, 10, 100};
   d.predicted_drms_m = {0.01, 0.5, 40};
   d.recorded_rms_m = {0.012, 0.4, 45};
-  d.segment_time_s = {{1, 10, 100}, {1, 10, 100}};
-  d.segment_horizontal_m = {{0.01, 0.3, 30}, {0.02, 0.6, 60}};
-  const Figure f = drift_figure(d);
+  std::vector<pipeline::DriftSegment> segments(2);
+  segments[0].time_s = segments[1].time_s = {1, 10, 100};
+  segments[0].position_error_ne_m = {{0.01, 0.0}, {0.3, 0.0}, {30.0, 0.0}};
+  segments[1].position_error_ne_m = {{0.02, 0.0}, {0.6, 0.0}, {60.0, 0.0}};
+  const Figure f = drift_figure(d, segments);
   const Series* one = find_series(f, "predicted 1 sigma");
   const Series* three = find_series(f, "predicted 3 sigma");
   ASSERT_TRUE(one && three);
@@ -217,7 +219,10 @@ TEST(HtmlPage, SectionsTablesFiguresAndEscaping) {
   s.id = "summary";
   s.heading = "Summary";
   s.tables.push_back({"summary-table", "cap", {"a", "b"}, {{"1.5", "x<y"}, {"-2", "z"}}});
-  Figure f = drift_figure({{1, 2}, {1, 2}, {}, {}, {}});
+  pipeline::DriftSeries drift;
+  drift.time_s = {1, 2};
+  drift.predicted_drms_m = {1, 2};
+  Figure f = drift_figure(drift, {});
   s.figures.push_back({f.name, render_svg(f.plot), "cap & more", {{"data", "plots/d.csv"}}});
   s.code_lines = {"imunoise analyze 'a b.csv' -o out"};
   page.sections.push_back(s);

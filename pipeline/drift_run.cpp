@@ -1,0 +1,145 @@
+/// @file
+/// @brief The drift job of `imunoise drift` (see drift_run.h).
+#include "pipeline/drift_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "common/units.h"
+#include "ins/noise_from_model.h"
+#include "models/noise_simulator.h"
+
+namespace imunoise::pipeline {
+namespace {
+
+/// The six channels of RECORDING as an ImuSeries (spans into RECORDING).
+ImuSeries imu_series(const Recording& recording) {
+  ImuSeries series;
+  series.sample_period_s = recording.sample_period_s;
+  for (int c = 0; c < 6; ++c) {
+    const Channel* channel = recording.find_channel(kImuChannelNames[c]);
+    if (channel == nullptr)
+      throw DriftRefused(DriftRefusal::missing_channel, recording.source_path +
+                                                            ": drift needs all six channels; " +
+                                                            kImuChannelNames[c] + " is missing");
+    series.channels[c] = channel->values;
+  }
+  return series;
+}
+
+DriftOptions drift_options(const DriftRunOptions& o, const ProgressCallback& progress) {
+  DriftOptions d;
+  d.latitude_rad = o.location.latitude_deg * units::kDeg;
+  d.longitude_rad = o.location.longitude_deg * units::kDeg;
+  d.height_m = o.location.height_m;
+  d.heading_rad = o.heading_rad;
+  d.heading_sigma_rad = o.heading_sigma_rad;
+  d.align_s = o.align_s;
+  d.navigation_s = o.navigation_s;
+  d.warmup_s = o.warmup_s;
+  d.output_step_s = o.output_step_s;
+  d.report_times_s = o.report_times_s;
+  d.progress = progress;
+  return d;
+}
+
+/// MODEL's axes as simulator terms (flicker B included), gyro then accel, x, y, z.
+models::ImuNoiseModel simulator_model(const models::NoiseModel& model) {
+  models::ImuNoiseModel simulation;
+  for (int i = 0; i < 3; ++i) {
+    if (const auto* g = model.find_axis(kImuChannelNames[i]))
+      simulation.gyro[i] = models::channel_model_from(g->coefficients());
+    if (const auto* f = model.find_axis(kImuChannelNames[3 + i]))
+      simulation.accel[i] = models::channel_model_from(f->coefficients());
+  }
+  return simulation;
+}
+
+/// The envelope: the prediction and the RMS of the segments on the grid of ANALYSIS.
+DriftSeries envelope(const DriftAnalysis& analysis) {
+  const ins::DriftPrediction& p = analysis.prediction;
+  DriftSeries s;
+  s.time_s = analysis.time_s;
+  s.predicted_north_sigma_m = p.north_sigma_m;
+  s.predicted_east_sigma_m = p.east_sigma_m;
+  s.predicted_drms_m = p.horizontal_drms_m;
+  s.predicted_velocity_drms_m_per_s = p.velocity_horizontal_drms_m_per_s;
+  s.predicted_roll_sigma_rad = p.roll_sigma_rad;
+  s.predicted_pitch_sigma_rad = p.pitch_sigma_rad;
+  s.predicted_heading_sigma_rad = p.heading_sigma_rad;
+  for (std::size_t i = 0; i < s.time_s.size(); ++i) {
+    const double r = p.roll_sigma_rad[i], q = p.pitch_sigma_rad[i], h = p.heading_sigma_rad[i];
+    s.predicted_attitude_sigma_rad.push_back(std::sqrt(r * r + q * q + h * h));
+    double ss = 0.0;
+    for (const DriftSegment& seg : analysis.segments)
+      ss += seg.position_error_ne_m[i].squaredNorm();
+    s.recorded_rms_m.push_back(std::sqrt(ss / analysis.segments.size()));
+  }
+  return s;
+}
+
+}  // namespace
+
+DriftResult run_drift(const Recording& recording, const models::NoiseModel& model,
+                      const DriftRunOptions& options, const ProgressCallback& progress) {
+  ins::InsNoiseOptions noise_options;
+  noise_options.gm_convention = options.gm_convention;
+  const ins::InsSensorNoise noise = ins::ins_sensor_noise(model, noise_options);
+  const DriftOptions o = drift_options(options, progress);
+
+  const ImuSeries series = imu_series(recording);
+  const std::int64_t gaps = recording.report.timing.gap_count;
+  if (gaps > 0 && !options.force)
+    throw DriftRefused(DriftRefusal::time_gaps,
+                       recording.source_path + ": the recording has " + std::to_string(gaps) +
+                           " time gap(s); segments across a gap would navigate through missing "
+                           "data");
+  const MotionCheck motion = check_stationary(series, noise);
+  if (!motion.stationary && !options.force)
+    throw DriftRefused(DriftRefusal::not_stationary,
+                       recording.source_path + ": the IMU is not stationary (" + motion.reason +
+                           "); drift analysis compares free-inertial drift at rest with the "
+                           "noise model");
+
+  DriftAnalysis analysis = analyze_drift(series, noise, o);
+  DriftResult out;
+  out.series = envelope(analysis);
+  DriftSummary& summary = out.summary;
+  summary.consistency = std::move(analysis.consistency);
+  if (options.monte_carlo_runs > 0) {
+    models::FlickerBand band;
+    band.tau_max_s = std::max(1e4, 10.0 * (o.align_s + o.navigation_s));
+    MonteCarloEnvelope mc =
+        monte_carlo_drift(simulator_model(model), band, noise, series.sample_period_s, o,
+                          options.monte_carlo_runs, options.seed);
+    for (DriftConsistency& c : summary.consistency) {
+      const auto i = static_cast<std::size_t>(std::llround(c.time_s / o.output_step_s)) - 1;
+      c.monte_carlo_radial_rms_m = mc.radial_rms_m[i];
+      c.monte_carlo_radial_p95_m = mc.radial_p95_m[i];
+    }
+    out.series.mc_radial_p50_m = std::move(mc.radial_p50_m);
+    out.series.mc_radial_p68_m = std::move(mc.radial_p68_m);
+    out.series.mc_radial_p95_m = std::move(mc.radial_p95_m);
+    out.series.mc_radial_rms_m = std::move(mc.radial_rms_m);
+    summary.monte_carlo = DriftMonteCarlo{mc.runs, options.seed};
+  }
+
+  summary.recording = recording.source_path;
+  summary.model = options.model_path;
+  summary.location = options.location;
+  summary.protocol.align_s = o.align_s;
+  summary.protocol.navigation_s = o.navigation_s;
+  summary.protocol.warmup_s = o.warmup_s;
+  summary.protocol.segments = analysis.segments.size();
+  summary.protocol.vertical_channel = "height hold (theory.md §7.2): horizontal errors only";
+  summary.protocol.gyro_bias = "estimated over each alignment window and removed (§7.3)";
+  summary.protocol.heading = analysis.heading_note;
+  summary.protocol.bias_instability_as_gm = std::string(models::name_of(options.gm_convention));
+  summary.motion = motion;
+  summary.forced = options.force && !motion.stationary;
+  out.segments = std::move(analysis.segments);
+  return out;
+}
+
+}  // namespace imunoise::pipeline
