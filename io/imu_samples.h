@@ -1,44 +1,14 @@
 /// @file
-/// @brief IMU samples as they arrive in messages (an LCM log, a live LCM subscription), and
-/// their conversion to a Recording. One conversion for every message source, so `imunoise
-/// live` and `imunoise analyze` on a log of the same messages see the same numbers.
+/// @brief io's names for pipeline/imu_samples.h: the columns of IMU samples from messages and
+/// their conversion to a Recording moved to pipeline/ (pure computation, shared by the LCM log
+/// reader here and the live window there); the readers of io/ keep using them as io::.
 #pragma once
 
-#include <array>
-#include <cstdint>
-#include <string>
-#include <vector>
-
-#include "pipeline/recording.h"
+#include "pipeline/imu_samples.h"
 
 namespace imunoise::io {
 
-/// One stream of samples in SI, column by column (gyro x y z, accel x y z).
-struct ImuSampleColumns {
-  std::vector<std::int64_t> utime_us;  ///< sample stamps [µs], any epoch
-  /// Rates [rad/s, m/s²], or increments per sample [rad, m/s] when `increments` is true.
-  std::array<std::vector<double>, 6> values;
-  bool increments = false;
-  /// One temperature per sample [°C], or empty when not every sample carried one.
-  std::vector<double> temperature_degc;
-  /// Where each column came from, e.g. "angular_rate_rad_per_s[0]", and the unit it had there.
-  std::array<std::string, 6> source_fields;
-  std::array<std::string, 6> source_units;
-  std::string temperature_field;
-  std::int64_t non_finite_dropped = 0;  ///< NaN/Inf values in dropped samples
-  std::int64_t rows_dropped = 0;        ///< samples dropped because they held NaN/Inf
-
-  std::size_t size() const { return utime_us.size(); }
-  void clear();
-};
-
-/// The Recording of `samples`: time_s from utime relative to the first sample, sample period =
-/// the median interval, increments divided by it (as the CSV reader does), channels gyro_x …
-/// accel_z (+ "temperature" when present) with source_column "CHANNEL.FIELD", and the sampling
-/// report. Non-monotonic stamps are reported, not fatal. Throws InputError (naming
-/// `source_path`) for fewer than 2 samples or stamps that never increase.
-pipeline::Recording recording_from_imu_samples(ImuSampleColumns samples,
-                                               const std::string& source_path,
-                                               const std::string& channel);
+using pipeline::ImuSampleColumns;
+using pipeline::recording_from_imu_samples;
 
 }  // namespace imunoise::io

@@ -5,25 +5,21 @@
 /// to YAML and JSON, every state labelled with its unit.
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <vector>
+#include <utility>
 
 #include "common/errors.h"
 #include "common/number_text.h"
-#include "common/units.h"
 #include "ins/error_state_model.h"
 #include "ins/noise_from_model.h"
-#include "io/atomic_output.h"
+#include "io/discrete_model_file.h"
 #include "io/noise_model_yaml.h"
 #include "models/filter_parameters.h"
 #include "models/state_space.h"
-#include "pipeline/recording.h"
+#include "pipeline/sensor_states.h"
 #include "tools/commands.h"
 #include "tools/gm_convention_option.h"
 #include "tools/invocation.h"
@@ -53,101 +49,13 @@ const std::map<std::string, ins::BiasModel> kBiasModels{{"rw", ins::BiasModel::r
                                                         {"gm", ins::BiasModel::gauss_markov},
                                                         {"both", ins::BiasModel::both}};
 
-/// Renames the states of BLOCK: NAME → NAME_UNIT (state_space labels carry no unit).
-models::ContinuousStateModel with_units(models::ContinuousStateModel block,
-                                        const std::vector<std::string>& units) {
-  for (std::size_t i = 0; i < block.state_names.size() && i < units.size(); ++i)
-    block.state_names[i] += "_" + units[i];
-  return block;
-}
-
-/// White-noise lines reported beside the states (white noise is an input, not a state).
-struct WhiteNoise {
-  std::string axis;
-  double density = 0.0;  ///< N [rad/√s | m/s/√s]
-  bool gyro = true;
-};
-
-/// Per-axis sensor error states of every axis (theory.md §6.1): RW bias, GM biases (fitted
-/// GM terms and B as one GM by the convention), ramp [bias, slope].
-models::ContinuousStateModel sensor_states(const models::NoiseModel& model, const DiscretizeArgs& a,
-                                           const models::FilterParameterOptions& options,
-                                           std::vector<WhiteNoise>& white,
-                                           std::vector<std::string>& notes) {
-  std::vector<models::ContinuousStateModel> blocks;
-  const bool rw = a.bias != "gm", gm = a.bias != "rw";
-  for (const auto& axis : model.axes) {
-    const auto p = models::axis_filter_parameters(axis, options);
-    const std::string rate_unit = axis.gyro ? "rad_per_s" : "m_per_s2";
-    const std::string ramp_unit = axis.gyro ? "rad_per_s2" : "m_per_s3";
-    white.push_back({axis.name, p.white_noise, axis.gyro});
-    if (rw && p.random_walk > 0.0)
-      blocks.push_back(with_units(models::random_walk_state(p.random_walk, axis.name + "_bias_rw"),
-                                  {rate_unit}));
-    if (!rw && p.random_walk > 0.0)
-      notes.push_back(axis.name + ": random walk K not represented (--bias gm)");
-    if (gm) {
-      for (std::size_t j = 0; j < axis.gauss_markov.size(); ++j) {
-        const auto& g = axis.gauss_markov[j].value;
-        const double sigma =
-            a.conservative ? std::max(g.sigma, axis.gauss_markov[j].sigma_ci_high) : g.sigma;
-        blocks.push_back(
-            with_units(models::gauss_markov_state(sigma, g.tau_c_s,
-                                                  axis.name + "_bias_gm" + std::to_string(j + 1)),
-                       {rate_unit}));
-      }
-      if (p.bias_instability > 0.0)
-        blocks.push_back(with_units(models::gauss_markov_state(p.bias_gm.sigma, p.bias_gm.tau_c_s,
-                                                               axis.name + "_bias_instability_gm"),
-                                    {rate_unit}));
-    } else if (p.bias_instability > 0.0 || !axis.gauss_markov.empty()) {
-      notes.push_back(axis.name +
-                      ": bias instability / GM terms not represented (--bias rw; "
-                      "use --bias gm or both)");
-    }
-    if (p.ramp > 0.0)
-      blocks.push_back(
-          with_units(models::ramp_state(p.ramp, axis.name + "_ramp"), {rate_unit, ramp_unit}));
-  }
-  return models::block_diagonal(blocks);
-}
-
-/// Notes for the terms of one INS axis that BIAS cannot carry (ins_error_state_model drops them).
-void note_dropped_terms(const ins::SensorAxisNoise& n, ins::BiasModel bias, const std::string& name,
-                        std::vector<std::string>& notes) {
-  if (bias == ins::BiasModel::random_walk && n.bias_gm.sigma > 0.0)
-    notes.push_back(name + ": bias instability / GM not represented (--bias rw)");
-  if (bias == ins::BiasModel::gauss_markov && n.random_walk > 0.0)
-    notes.push_back(name + ": random walk K not represented (--bias gm)");
-}
-
-nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    nlohmann::json row = nlohmann::json::array();
-    for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-std::string matrix_yaml(const Eigen::MatrixXd& m, const std::string& indent) {
-  if (m.rows() == 0) return " []\n";
-  std::ostringstream out;
-  out << "\n";
-  for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    out << indent << "- [";
-    for (Eigen::Index c = 0; c < m.cols(); ++c)
-      out << (c ? ", " : "") << shortest_number_text(m(r, c));
-    out << "]\n";
-  }
-  return out.str();
-}
-
-std::string names_yaml(const std::vector<std::string>& names) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
-  return s + "]";
+/// The note of the file for a term the states leave out, naming the flag that left it out.
+std::string dropped_term_note(const pipeline::DroppedTerm& d, bool sensor_states) {
+  if (d.kind == pipeline::DroppedTerm::Kind::random_walk)
+    return d.axis + ": random walk K not represented (--bias gm)";
+  return d.axis + (sensor_states ? ": bias instability / GM terms not represented (--bias rw; "
+                                   "use --bias gm or both)"
+                                 : ": bias instability / GM not represented (--bias rw)");
 }
 
 void run_discretize(const DiscretizeArgs& a) {
@@ -159,14 +67,12 @@ void run_discretize(const DiscretizeArgs& a) {
   options.conservative = a.conservative;
   options.gm_convention = gm_conventions().at(a.gm_convention);
   options.filter_rate_hz = 1.0 / a.dt_s;
+  const ins::BiasModel bias = kBiasModels.at(a.bias);
 
-  std::vector<WhiteNoise> white;
-  std::vector<std::string> notes;
-  models::ContinuousStateModel continuous;
-  std::string description;
-  if (a.states == "sensor") {
-    continuous = sensor_states(model, a, options, white, notes);
-    description = "per-axis sensor error states (theory.md §6.1); white noise is an input";
+  const bool sensor = a.states == "sensor";
+  pipeline::SensorStates states;
+  if (sensor) {
+    states = pipeline::sensor_states(model, bias, options, a.dt_s);
   } else {
     ins::InsNoiseOptions noise_options;
     noise_options.conservative = a.conservative;
@@ -177,100 +83,33 @@ void run_discretize(const DiscretizeArgs& a) {
     } catch (const InputError& e) {
       throw InputError(a.model_path + ": --states " + a.states + ": " + e.what());
     }
-    const auto bias = kBiasModels.at(a.bias);
-    for (int i = 0; i < 3; ++i) {
-      noise.gyro[i].scale_factor_sigma = a.gyro_scale_sigma_ppm * 1e-6;
-      noise.accel[i].scale_factor_sigma = a.accel_scale_sigma_ppm * 1e-6;
-      note_dropped_terms(noise.gyro[i], bias, pipeline::kImuChannelNames[i], notes);
-      note_dropped_terms(noise.accel[i], bias, pipeline::kImuChannelNames[3 + i], notes);
-    }
-    for (int i = 0; i < 3; ++i)
-      white.push_back({pipeline::kImuChannelNames[i], noise.gyro[i].white_noise, true});
-    for (int i = 0; i < 3; ++i)
-      white.push_back({pipeline::kImuChannelNames[3 + i], noise.accel[i].white_noise, false});
-    ins::ErrorStateOptions o;
-    o.scale_factors = a.states == "21";
-    o.bias = bias;
-    o.height_hold = a.height_hold;
-    const auto nominal = ins::stationary_nominal(a.latitude_deg * units::kDeg, a.height_m,
-                                                 a.heading_deg * units::kDeg);
-    continuous = ins::ins_error_state_model(nominal, noise, o);
-    description = "INS error state (theory.md §6.3, §7.4), stationary at latitude " +
-                  shortest_number_text(a.latitude_deg) + " deg, height " +
-                  shortest_number_text(a.height_m) + " m, heading " +
-                  shortest_number_text(a.heading_deg) + " deg" +
-                  (a.height_hold ? ", vertical channel held" : "");
+    pipeline::InsStateOptions o;
+    o.error_state.scale_factors = a.states == "21";
+    o.error_state.bias = bias;
+    o.error_state.height_hold = a.height_hold;
+    o.latitude_deg = a.latitude_deg;
+    o.height_m = a.height_m;
+    o.heading_deg = a.heading_deg;
+    o.gyro_scale_factor_sigma = a.gyro_scale_sigma_ppm * 1e-6;
+    o.accel_scale_factor_sigma = a.accel_scale_sigma_ppm * 1e-6;
+    o.dt_s = a.dt_s;
+    states = pipeline::ins_states(std::move(noise), o);
   }
-  const auto discrete = models::discretize(continuous, a.dt_s);
 
-  // YAML: the same content as the JSON, with a comment header for people.
-  std::ostringstream y;
-  y << "# imunoise discrete state model from " << a.model_path << "\n";
-  y << "# " << description << "\n";
-  y << "# x_{k+1} = phi x_k + w_k, cov(w_k) = qd; continuous xdot = F x + G w, E[w w'] = Qc "
-       "delta\n";
-  y << "# discretization: " << discrete.method << " (exact: Van Loan, theory.md §6.2)\n";
-  y << "# values: " << (a.conservative ? "conservative (upper interval ends)" : "best estimates")
-    << "; bias model: " << a.bias << "; B as GM by convention " << a.gm_convention << "\n";
-  for (const auto& n : notes) y << "# note: " << n << "\n";
-  y << "# " << discrete.state_names.size() << " states\n";
-  y << "format: imunoise-discrete-model\nformat_version: 1\n";
-  y << "source_model: \"" << a.model_path << "\"\n";
-  y << "dt_s: " << shortest_number_text(a.dt_s) << "\n";
-  y << "states: " << names_yaml(discrete.state_names) << "\n";
-  y << "noises: " << names_yaml(continuous.noise_names) << "\n";
-  y << "phi:" << matrix_yaml(discrete.Phi, "  ");
-  y << "qd:" << matrix_yaml(discrete.Qd, "  ");
-  y << "initial_variance: [";
-  for (Eigen::Index i = 0; i < continuous.initial_variance.size(); ++i)
-    y << (i ? ", " : "") << shortest_number_text(continuous.initial_variance(i));
-  y << "]\n";
-  y << "continuous:\n  F:" << matrix_yaml(continuous.F, "    ");
-  y << "  G:" << matrix_yaml(continuous.G, "    ");
-  y << "  Qc:" << matrix_yaml(continuous.Qc, "    ");
-  y << "white_noise:  # inputs, not states: per-sample sigma for rates and for increments\n";
-  nlohmann::json white_json = nlohmann::json::array();
-  for (const auto& w : white) {
-    const std::string u = w.gyro ? "rad" : "m_per_s";
-    const double rate_sigma = models::white_noise_rate_sigma(w.density, a.dt_s);
-    const double increment_sigma = models::white_noise_increment_sigma(w.density, a.dt_s);
-    y << "  - {axis: " << w.axis << ", density_" << (w.gyro ? "rad_per_sqrt_s" : "m_per_s_sqrt_s")
-      << ": " << shortest_number_text(w.density) << ", rate_sigma_"
-      << (w.gyro ? "rad_per_s" : "m_per_s2") << ": " << shortest_number_text(rate_sigma)
-      << ", increment_sigma_" << u << ": " << shortest_number_text(increment_sigma) << "}\n";
-    white_json.push_back({{"axis", w.axis},
-                          {w.gyro ? "density_rad_per_sqrt_s" : "density_m_per_s_sqrt_s", w.density},
-                          {w.gyro ? "rate_sigma_rad_per_s" : "rate_sigma_m_per_s2", rate_sigma},
-                          {"increment_sigma_" + u, increment_sigma}});
-  }
-  nlohmann::json j;
-  j["format"] = "imunoise-discrete-model";
-  j["format_version"] = 1;
-  j["source_model"] = a.model_path;
-  j["description"] = description;
-  j["discretization"] = discrete.method;
-  j["notes"] = notes;
-  j["dt_s"] = a.dt_s;
-  j["states"] = discrete.state_names;
-  j["noises"] = continuous.noise_names;
-  j["phi"] = matrix_json(discrete.Phi);
-  j["qd"] = matrix_json(discrete.Qd);
-  j["initial_variance"] =
-      std::vector<double>(continuous.initial_variance.data(),
-                          continuous.initial_variance.data() + continuous.initial_variance.size());
-  j["continuous"] = {{"F", matrix_json(continuous.F)},
-                     {"G", matrix_json(continuous.G)},
-                     {"Qc", matrix_json(continuous.Qc)}};
-  j["white_noise"] = white_json;
-
-  std::error_code ec;
-  std::filesystem::create_directories(a.output, ec);
-  if (ec) throw InputError(a.output + ": cannot create the directory: " + ec.message());
-  const auto base = std::filesystem::path(a.output) / "discrete_model";
-  io::write_file_atomically(base.string() + ".yaml", y.str());
-  io::write_file_atomically(base.string() + ".json", j.dump(2) + "\n");
+  io::DiscreteModelFile file;
+  file.discrete = models::discretize(states.continuous, a.dt_s);
+  file.source_model = a.model_path;
+  file.description = states.description;
+  for (const pipeline::DroppedTerm& d : states.dropped)
+    file.notes.push_back(dropped_term_note(d, sensor));
+  file.conservative = a.conservative;
+  file.bias_model = a.bias;
+  file.gm_convention = a.gm_convention;
+  file.continuous = std::move(states.continuous);
+  file.white_noise = std::move(states.white_noise);
+  const std::string base = io::write_discrete_model(file, a.output);
   write_command_file(a.output);
-  std::cout << base.string() << ".yaml\n" << base.string() << ".json\n";
+  std::cout << base << ".yaml\n" << base << ".json\n";
 }
 
 }  // namespace

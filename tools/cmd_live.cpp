@@ -10,7 +10,6 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
-#include <deque>
 #include <filesystem>
 #include <future>
 #include <iostream>
@@ -22,9 +21,12 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/atomic_output.h"
+#include "io/imu_sample_message.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "pipeline/gap_policy.h"
+#include "pipeline/imu_samples.h"
+#include "pipeline/live_window.h"
 #include "tools/analysis_options.h"
 #include "tools/commands.h"
 #include "tools/duration.h"
@@ -56,22 +58,13 @@ struct LiveArgs {
   Verbosity verbosity;
 };
 
-/// What arrived, and what was done with it.
-struct LiveCounts {
-  std::int64_t received = 0;        ///< messages on the channel
-  std::int64_t accepted = 0;        ///< samples added to the window
-  std::int64_t undecodable = 0;     ///< wrong type, truncated or corrupt
-  std::int64_t non_finite = 0;      ///< NaN/Inf in a used field
-  std::int64_t out_of_order = 0;    ///< utime ≤ the last accepted one (incl. duplicates)
-  std::int64_t mode_changes = 0;    ///< has_increments differing from the window's samples
-  std::int64_t gaps = 0;            ///< intervals > 1.5 × the nominal period
-  std::int64_t trimmed_by_cap = 0;  ///< oldest samples dropped by --max-samples
-  std::int64_t restarts = 0;        ///< window restarted after a run of rejected samples
+/// What the loop did with the window (the window counts what arrived).
+struct AnalysisCounts {
   std::int64_t analyses = 0, failed_analyses = 0, skipped_analyses = 0;
   std::int64_t publish_failures = 0;
 };
 
-std::string counts_text(const LiveCounts& c) {
+std::string counts_text(const pipeline::LiveWindowCounts& c) {
   return "received " + std::to_string(c.received) + ", accepted " + std::to_string(c.accepted) +
          ", undecodable " + std::to_string(c.undecodable) + ", non-finite " +
          std::to_string(c.non_finite) + ", out of order " + std::to_string(c.out_of_order) +
@@ -80,105 +73,15 @@ std::string counts_text(const LiveCounts& c) {
          ", restarts " + std::to_string(c.restarts);
 }
 
-/// Rejected samples in a row after which the stream counts as restarted.
-constexpr std::int64_t kRestartAfterRejections = 100;
-
-/// b − a [µs] in double: stamps come from the network and may be anything, so no int64
-/// subtraction that could overflow.
-double difference_us(std::int64_t a, std::int64_t b) {
-  return static_cast<double>(b) - static_cast<double>(a);
-}
-
-/// The rolling window and the message handler's state (touched only by the LCM thread that
-/// calls handle(), i.e. the main thread).
-class LiveWindow {
- public:
-  LiveWindow(double window_s, std::int64_t max_samples)
-      : window_us_(window_s * 1e6), max_samples_(max_samples) {}
-
-  void on_message(const unsigned char* data, std::size_t size) {
-    ++counts_.received;
-    imunoise::imu_sample_t m{};
-    // decode() checks the fingerprint first: another type on the channel fails here.
-    if (size > static_cast<std::size_t>(INT32_MAX) ||
-        m.decode(data, 0, static_cast<int>(size)) != static_cast<int>(size)) {
-      ++counts_.undecodable;
-      return;
-    }
-    std::int64_t bad = 0;
-    if (!io::first_non_finite_field(m, &bad).empty()) {
-      ++counts_.non_finite;
-      return;
-    }
-    if (!window_.empty()) {
-      const imunoise::imu_sample_t& last = window_.back();
-      const bool out_of_order = m.utime <= last.utime;
-      const bool mode_change = (m.has_increments != 0) != (last.has_increments != 0);
-      if (out_of_order || mode_change) {
-        // A long run of rejections is not noise but a new stream (the sender restarted, its
-        // clock was reset, it switched to increments): start the window again from here
-        // rather than reject everything from now on. Every message is counted once: as
-        // rejected, or (the one that restarts the window) as accepted.
-        if (++consecutive_rejections_ < kRestartAfterRejections) {
-          ++(out_of_order ? counts_.out_of_order : counts_.mode_changes);
-          return;
-        }
-        window_.clear();
-        ++counts_.restarts;
-      } else if (nominal_period_us_ > 0 &&
-                 difference_us(last.utime, m.utime) > 1.5 * nominal_period_us_) {
-        ++counts_.gaps;
-      }
-    }
-    consecutive_rejections_ = 0;
-    window_.push_back(m);
-    ++counts_.accepted;
-    ++new_samples_;
-    while (window_.size() > 1 &&
-           difference_us(window_.front().utime, window_.back().utime) > window_us_) {
-      window_.pop_front();
-    }
-    while (static_cast<std::int64_t>(window_.size()) > max_samples_) {
-      window_.pop_front();
-      ++counts_.trimmed_by_cap;
-    }
+/// The message handler: called by the LCM thread that calls handleTimeout(), i.e. the main
+/// thread, the one thread that touches the window.
+void handle_imu(const lcm::ReceiveBuffer* buffer, const std::string&,
+                pipeline::LiveWindow* window) {
+  if (const auto sample = io::decode_imu_sample(buffer->data, buffer->data_size)) {
+    window->add(*sample);
+  } else {
+    window->add_undecodable();
   }
-
-  /// Span of the window [s].
-  double span_s() const {
-    return window_.size() < 2 ? 0.0
-                              : difference_us(window_.front().utime, window_.back().utime) * 1e-6;
-  }
-  std::int64_t last_utime() const { return window_.empty() ? 0 : window_.back().utime; }
-  std::int64_t new_samples() const { return new_samples_; }
-
-  /// The window as columns for recording_from_imu_samples (the same path as the log reader).
-  io::ImuSampleColumns snapshot() {
-    io::ImuSampleColumns columns;
-    columns.utime_us.reserve(window_.size());
-    for (auto& v : columns.values) v.reserve(window_.size());
-    for (const imunoise::imu_sample_t& m : window_) io::append_imu_sample(m, columns);
-    new_samples_ = 0;
-    return columns;
-  }
-  void set_nominal_period_s(double period_s) {
-    nominal_period_us_ = static_cast<std::int64_t>(period_s * 1e6);
-  }
-
-  LiveCounts& counts() { return counts_; }
-
- private:
-  double window_us_;
-  std::int64_t max_samples_;
-  std::deque<imunoise::imu_sample_t> window_;
-  std::int64_t new_samples_ = 0;
-  std::int64_t nominal_period_us_ = 0;
-  std::int64_t consecutive_rejections_ = 0;
-  LiveCounts counts_;
-};
-
-void handle_imu(const lcm::ReceiveBuffer* buffer, const std::string&, LiveWindow* window) {
-  window->on_message(static_cast<const unsigned char*>(buffer->data), buffer->data_size);
 }
 
 void run_live(const LiveArgs& args) {
@@ -208,7 +111,7 @@ void run_live(const LiveArgs& args) {
   if (!args.publish_url.empty() && args.publish_url != args.url)
     publish_bus.emplace(args.publish_url);
   LcmBus& out_bus = publish_bus ? *publish_bus : bus;
-  LiveWindow window(window_s, args.max_samples);
+  pipeline::LiveWindow window({window_s, args.max_samples, every_s}, io::imu_sample_fields());
   lcm::Subscription* subscription = bus.lcm().subscribeFunction(args.channel, &handle_imu, &window);
   // LCM queues messages per subscription while the handler is not being called; bounded, so a
   // flood costs dropped messages, not memory.
@@ -222,9 +125,8 @@ void run_live(const LiveArgs& args) {
 
   const std::string source = "lcm:" + args.channel;
   const auto started = std::chrono::steady_clock::now();
-  std::int64_t analysed_until_us = 0;  // data time of the last analysis
   std::future<pipeline::RecordingAnalysis> running;
-  LiveCounts& counts = window.counts();
+  AnalysisCounts counts;
 
   const auto log = [&](const std::string& line) {
     if (!args.verbosity.quiet) std::cerr << "imunoise live: " << line << "\n";
@@ -232,12 +134,11 @@ void run_live(const LiveArgs& args) {
   auto analysis_started = started;  // for --verbose
   const auto start_analysis = [&] {
     analysis_started = std::chrono::steady_clock::now();
-    io::ImuSampleColumns columns = window.snapshot();
-    analysed_until_us = window.last_utime();
+    pipeline::ImuSampleColumns columns = window.snapshot();
     running = std::async(std::launch::async, [columns = std::move(columns), &args, source,
                                               channel = args.channel]() mutable {
       const pipeline::Recording recording =
-          io::recording_from_imu_samples(std::move(columns), source, channel);
+          pipeline::recording_from_imu_samples(std::move(columns), source, channel);
       return analyze_recording(recording, source, args.analysis);
     });
   };
@@ -266,7 +167,8 @@ void run_live(const LiveArgs& args) {
       log("published model " + std::to_string(counts.analyses) + " (" +
           std::to_string(result.model.samples) + " samples, " +
           significant_number_text(result.model.duration_s, 6) + " s at " +
-          significant_number_text(result.model.sample_rate_hz, 6) + " Hz); " + counts_text(counts));
+          significant_number_text(result.model.sample_rate_hz, 6) + " Hz); " +
+          counts_text(window.counts()));
       if (args.verbosity.verbose) {
         const std::chrono::duration<double> took =
             std::chrono::steady_clock::now() - analysis_started;
@@ -297,12 +199,9 @@ void run_live(const LiveArgs& args) {
     if (running.valid() && running.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
       finish_analysis();
     }
-    // After a restart the stamps may lie before the last analysis: analyse when the window
-    // alone spans --every again.
-    const double since_last_s = difference_us(analysed_until_us, window.last_utime()) * 1e-6;
-    const bool due = window.new_samples() > 0 && window.span_s() >= every_s &&
-                     (since_last_s >= every_s || since_last_s < 0.0);
-    if (due) {
+    // After a restart the stamps may lie before the last analysis: then it is due when the
+    // window alone spans --every again.
+    if (window.analysis_due()) {
       if (running.valid()) {
         ++counts.skipped_analyses;  // the previous one still runs; the next check retries
       } else {
@@ -316,7 +215,7 @@ void run_live(const LiveArgs& args) {
   }
   // One last analysis of whatever arrived since the previous one.
   if (running.valid()) finish_analysis();
-  if (window.new_samples() > 0 && window.span_s() > 0.0) {
+  if (window.has_unanalysed_data()) {
     start_analysis();
     finish_analysis();
   }
@@ -325,8 +224,9 @@ void run_live(const LiveArgs& args) {
             << (g_stop_requested ? "signal"
                 : end_of_input   ? "end of input"
                                  : "--max-runtime")
-            << "); " << counts_text(counts) << "; analyses " << counts.analyses << ", failed "
-            << counts.failed_analyses << ", publish failures " << counts.publish_failures << "\n";
+            << "); " << counts_text(window.counts()) << "; analyses " << counts.analyses
+            << ", failed " << counts.failed_analyses << ", publish failures "
+            << counts.publish_failures << "\n";
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
-#include "io/imu_samples.h"
+#include "pipeline/imu_samples.h"
 
+#include <optional>
 #include <utility>
 
-#include "io/sampling_report.h"
+#include "common/errors.h"
+#include "pipeline/sampling_checks.h"
 
-namespace imunoise::io {
+namespace imunoise::pipeline {
 
 namespace {
 
@@ -27,21 +29,20 @@ void ImuSampleColumns::clear() {
   rows_dropped = 0;
 }
 
-pipeline::Recording recording_from_imu_samples(ImuSampleColumns samples,
-                                               const std::string& source_path,
-                                               const std::string& channel) {
+Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string& source_path,
+                                     const std::string& channel) {
   const std::size_t n = samples.size();
-  pipeline::require_min_samples(source_path, n, 2, "a sample rate from time stamps");
+  require_min_samples(source_path, n, 2, "a sample rate from time stamps");
 
-  pipeline::Recording rec;
+  Recording rec;
   rec.source_path = source_path;
   rec.start_time_s = static_cast<double>(samples.utime_us.front()) * 1e-6;
   rec.time_s.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     rec.time_s[i] = relative_seconds(samples.utime_us[i], samples.utime_us.front());
   }
-  const pipeline::SamplingOptions sampling;
-  const pipeline::TimingReport timing = pipeline::analyze_timing(rec.time_s, sampling);
+  const SamplingOptions sampling;
+  const TimingReport timing = analyze_timing(rec.time_s, sampling);
   if (!(timing.median_interval_s > 0.0)) {
     throw InputError(located_message(source_path, 0, 0,
                                      "cannot estimate the sample rate: the utime stamps on "
@@ -52,7 +53,7 @@ pipeline::Recording recording_from_imu_samples(ImuSampleColumns samples,
 
   const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
                                const std::string& field, std::vector<double> v, bool from_inc) {
-    pipeline::Channel ch;
+    Channel ch;
     ch.name = std::move(name);
     ch.unit = std::move(unit);
     ch.source_unit = std::move(source_unit);
@@ -65,7 +66,7 @@ pipeline::Recording recording_from_imu_samples(ImuSampleColumns samples,
     rec.channels.push_back(std::move(ch));
   };
   for (std::size_t c = 0; c < 6; ++c) {
-    add_channel(pipeline::kImuChannelNames[c], c < 3 ? "rad/s" : "m/s^2", samples.source_units[c],
+    add_channel(kImuChannelNames[c], c < 3 ? "rad/s" : "m/s^2", samples.source_units[c],
                 samples.source_fields[c], std::move(samples.values[c]), samples.increments);
   }
   if (samples.temperature_degc.size() == n) {
@@ -78,9 +79,8 @@ pipeline::Recording recording_from_imu_samples(ImuSampleColumns samples,
   rec.report.timing = timing;
   rec.report.non_finite_dropped = samples.non_finite_dropped;
   rec.report.rows_dropped = samples.rows_dropped;
-  rec.report.channels =
-      pipeline::check_channels(rec.channels, std::nullopt, std::nullopt, sampling);
+  rec.report.channels = check_channels(rec.channels, std::nullopt, std::nullopt, sampling);
   return rec;
 }
 
-}  // namespace imunoise::io
+}  // namespace imunoise::pipeline
