@@ -2,7 +2,10 @@
 /// @brief Number → text for messages, file headers and outputs.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -23,6 +26,28 @@ inline std::string significant_number_text(double value, int digits = 4) {
   out.precision(digits);
   out << value;
   return out.str();
+}
+
+/// A duration with a readable unit, for reports and status lines a person reads: "0 s",
+/// "47.7 ns", "8.12 us", "8.126 ms", "310.123 s" (printf %g with 3 significant digits in ns
+/// and µs, 4 in ms, 6 in s; the unit chosen by |SECONDS|).
+inline std::string duration_text(double seconds) {
+  const double a = std::fabs(seconds);
+  char buffer[64];
+  int length = 0;
+  if (a == 0.0) return "0 s";
+  if (a < 1e-6) {
+    length = std::snprintf(buffer, sizeof buffer, "%.3g ns", seconds * 1e9);
+  } else if (a < 1e-3) {
+    length = std::snprintf(buffer, sizeof buffer, "%.3g us", seconds * 1e6);
+  } else if (a < 1.0) {
+    length = std::snprintf(buffer, sizeof buffer, "%.4g ms", seconds * 1e3);
+  } else {
+    length = std::snprintf(buffer, sizeof buffer, "%.6g s", seconds);
+  }
+  if (length < 0) return {};
+  return std::string(buffer,
+                     std::min<std::size_t>(static_cast<std::size_t>(length), sizeof buffer - 1));
 }
 
 }  // namespace imunoise

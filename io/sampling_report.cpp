@@ -9,6 +9,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "common/number_text.h"
 #include "common/sampling_gap.h"
 #include "common/units.h"
 
@@ -33,16 +34,6 @@ std::string where(const std::optional<pipeline::SampleLocation>& loc) {
   if (!loc) return {};
   if (loc->line) return printf_string(" (first at line %" PRId64 ")", *loc->line);
   return printf_string(" (first at sample %" PRId64 ")", loc->index);
-}
-
-/// A duration with a readable unit.
-std::string seconds(double s) {
-  const double a = std::fabs(s);
-  if (a == 0.0) return "0 s";
-  if (a < 1e-6) return printf_string("%.3g ns", s * 1e9);
-  if (a < 1e-3) return printf_string("%.3g us", s * 1e6);
-  if (a < 1.0) return printf_string("%.4g ms", s * 1e3);
-  return printf_string("%.6g s", s);
 }
 
 /// The same value in the unit people read off datasheets, for gyro and accel channels.
@@ -74,14 +65,15 @@ std::string format_sampling_report(const pipeline::SamplingReport& report,
   }
   if (!t.has_timestamps) {
     out += printf_string("rate:       %.6g Hz (given; no time stamps to check)\n", t.rate_hz);
-    out += "duration:   " + seconds(t.duration_s) + "\n";
+    out += "duration:   " + duration_text(t.duration_s) + "\n";
   } else {
     out += printf_string("rate:       %.6g Hz from the median interval ", t.rate_hz) +
-           seconds(t.median_interval_s) + printf_string(" (mean rate %.6g Hz)\n", t.mean_rate_hz);
-    out += "duration:   " + seconds(t.duration_s) + "\n";
+           duration_text(t.median_interval_s) +
+           printf_string(" (mean rate %.6g Hz)\n", t.mean_rate_hz);
+    out += "duration:   " + duration_text(t.duration_s) + "\n";
     out += printf_string("gaps:       %" PRId64, t.gap_count);
     if (t.gap_count > 0) {
-      out += " (longest " + seconds(t.longest_gap_s) +
+      out += " (longest " + duration_text(t.longest_gap_s) +
              printf_string(", about %" PRId64 " samples missing)", t.missing_samples) +
              where(t.first_gap);
     }
@@ -90,8 +82,8 @@ std::string format_sampling_report(const pipeline::SamplingReport& report,
            where(t.first_non_monotonic) +
            printf_string(", %" PRId64 " duplicate", t.duplicate_count) + where(t.first_duplicate) +
            " time stamps\n";
-    out += "jitter:     RMS " + seconds(t.jitter_rms_s) + ", max " + seconds(t.jitter_max_s) +
-           " (interval - median, gaps excluded)\n";
+    out += "jitter:     RMS " + duration_text(t.jitter_rms_s) + ", max " +
+           duration_text(t.jitter_max_s) + " (interval - median, gaps excluded)\n";
   }
   for (const pipeline::ChannelReport& c : report.channels) {
     const std::string unit = c.unit.empty() ? "" : " " + c.unit;

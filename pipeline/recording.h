@@ -54,6 +54,15 @@ struct Recording {
   }
 };
 
+/// Time of sample I of RECORDING since its first sample [s]: its stamp, or I / rate for a
+/// recording read at a fixed rate (the report's rate, else 1 / sample_period_s).
+inline double sample_time_s(const Recording& recording, std::size_t i) {
+  if (!recording.time_s.empty()) return recording.time_s[i];
+  const double rate = recording.report.timing.rate_hz > 0.0 ? recording.report.timing.rate_hz
+                                                            : 1.0 / recording.sample_period_s;
+  return static_cast<double>(i) / rate;
+}
+
 /// The inputs of the sampling report's channel checks: the gyro channels (rad/s) against
 /// GYRO_FULL_SCALE, the accelerometer channels (m/s^2) against ACCEL_FULL_SCALE.
 inline std::vector<ChannelSamples> channel_checks(const std::vector<Channel>& channels,

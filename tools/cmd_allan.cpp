@@ -1,6 +1,7 @@
 /// @file
-/// @brief `imunoise allan`: one Allan-family deviation curve of one series, with confidence
-/// intervals, as a table or as one JSON object.
+/// @brief `imunoise allan`: the flags of one Allan-family deviation curve of one series
+/// (analysis/series_deviation.h), with confidence intervals, printed as a table or as one JSON
+/// object (io/deviation_curve_text.h).
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -10,12 +11,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "analysis/deviation.h"
-#include "analysis/tau_grid.h"
+#include "analysis/series_deviation.h"
 #include "common/errors.h"
-#include "io/binary_recording.h"
 #include "io/csv_reader.h"
-#include "io/sampling_report.h"
+#include "io/deviation_curve_text.h"
+#include "io/recording_input.h"
+#include "pipeline/sampling_checks.h"
 #include "tools/commands.h"
 #include "tools/recording_input.h"
 #include "tools/verbosity.h"
@@ -41,24 +42,6 @@ struct AllanArgs {
   CLI::Option* tau0_option = nullptr;  // to tell a given --tau0 from the default
   Verbosity verbosity;
 };
-
-/// Which EDF model the interval uses, for the table header.
-const char* edf_model(analysis::DeviationType type) {
-  using analysis::DeviationType;
-  switch (type) {
-    case DeviationType::totdev:
-      return "of SP 1065 (TOTDEV)";
-    case DeviationType::mtotdev:
-    case DeviationType::ttotdev:
-      return "of SP 1065 Table 8 (MTOT)";
-    case DeviationType::htotdev:
-      return "by Greenhall-Riley (OHDEV model)";
-    case DeviationType::theo1:
-      return "of SP 1065 (Theo1)";
-    default:
-      return "by Greenhall-Riley";
-  }
-}
 
 /// One channel of an LCM log (--channel) or of an imunoise binary recording as a series:
 /// --column names the recording channel (gyro_x … accel_z, temperature), with its time stamps.
@@ -105,8 +88,9 @@ void run_allan(const AllanArgs& args, StageTimes& times) {
   read_options.drop_non_finite = args.drop_non_finite;
   read_options.read_time = !tau0_given;
   read_options.threads = args.threads;
-  const bool lcm_log = is_lcm_log_file(args.file);
-  const io::Series series = lcm_log || io::is_binary_recording_file(args.file)
+  const io::RecordingFormat format = io::detect_recording_format(args.file);
+  const bool lcm_log = format == io::RecordingFormat::kLcmLog;
+  const io::Series series = format != io::RecordingFormat::kTable
                                 ? recording_series(args, read_options, lcm_log)
                                 : io::read_series(args.file, read_options);
 
@@ -132,23 +116,13 @@ void run_allan(const AllanArgs& args, StageTimes& times) {
     }
   }
 
-  const bool is_phase = args.data == "phase";
-  const std::size_t needed = is_phase ? 2 : 1;
-  if (series.values.size() < needed) {
+  const analysis::SeriesKind kind =
+      args.data == "phase" ? analysis::SeriesKind::kPhase : analysis::SeriesKind::kRate;
+  if (series.values.size() < analysis::min_series_values(kind)) {
     throw AnalysisError(located_message(args.file, 0, 0,
                                         "too few samples: " + std::to_string(series.values.size()) +
                                             " value(s) in column '" + series.column_name + "'"));
   }
-  // SI inside means: the phase is the integral of the input in input-unit·s.
-  const std::vector<double> phase = is_phase ? analysis::detrended_phase(series.values)
-                                             : analysis::phase_from_rate(series.values, tau0_s);
-  std::vector<std::int64_t> factors;
-  try {
-    factors = analysis::averaging_factors(grid, *type, static_cast<std::int64_t>(phase.size()));
-  } catch (const AnalysisError& e) {
-    throw AnalysisError(located_message(args.file, 0, 0, e.what()));
-  }
-
   times.mark("read");
   analysis::DeviationOptions options;
   options.type = *type;
@@ -157,56 +131,22 @@ void run_allan(const AllanArgs& args, StageTimes& times) {
   options.threads = args.threads;
   options.bias_corrected = args.bias_corrected;
   const analysis::DeviationCurve curve =
-      analysis::compute_deviation(phase, tau0_s, factors, options);
+      analysis::series_deviation(series.values, kind, tau0_s, grid, options, args.file);
   times.mark("deviations");
 
+  io::SeriesCurveInfo info;
+  info.data = args.data;
+  info.source = args.file;
+  info.column = series.column_name;
+  info.n_samples = series.values.size();
+  info.tau0_source = tau0_source;
+  info.non_finite_dropped = series.non_finite_dropped;
+  info.alpha = options.alpha;
+  info.bias_corrected = options.bias_corrected;
   if (args.json) {
-    nlohmann::ordered_json out;
-    out["type"] = std::string(analysis::to_string(curve.type));
-    out["data"] = args.data;
-    out["tau0_s"] = curve.tau0_s;
-    out["n_samples"] = series.values.size();
-    out["confidence"] = curve.confidence;
-    out["tau0_source"] = tau0_source;
-    out["source"] = args.file;
-    out["column"] = series.column_name;
-    out["n_phase"] = curve.n_phase;
-    out["non_finite_dropped"] = series.non_finite_dropped;
-    const bool time_statistic = curve.type == analysis::DeviationType::tdev ||
-                                curve.type == analysis::DeviationType::ttotdev;
-    out["value_unit"] = time_statistic ? "input unit * s" : "input unit";
-    out["bias_corrected"] = options.bias_corrected && analysis::cost_grows_with_m(curve.type);
-    auto& points = out["points"] = nlohmann::ordered_json::array();
-    for (const auto& p : curve.points) {
-      points.push_back({{"m", p.m},
-                        {"tau_s", p.tau_s},
-                        {"value", p.value},
-                        {"n_terms", p.n_terms},
-                        {"alpha", p.alpha},
-                        {"edf", p.edf},
-                        {"ci_low", p.ci_low},
-                        {"ci_high", p.ci_high}});
-    }
-    std::cout << out.dump() << "\n";
-    return;
-  }
-  std::cout << fmt::format(
-      "# {} of {} column '{}' ({} data, tau0 = {} s from {}, {} samples, {} phase points)\n"
-      "# confidence interval: {:.1f} % two-sided chi-square, EDF {}{}\n",
-      analysis::to_string(curve.type), args.file, series.column_name, args.data, tau0_s,
-      tau0_source, series.values.size(), curve.n_phase, 100.0 * curve.confidence,
-      edf_model(curve.type),
-      options.alpha ? fmt::format(", alpha fixed at {}", *options.alpha)
-                    : ", alpha identified per tau (lag-1 ACF)");
-  if (series.non_finite_dropped > 0) {
-    std::cout << fmt::format("# {} NaN/Inf values dropped\n", series.non_finite_dropped);
-  }
-  std::cout << fmt::format("{:>10} {:>13} {:>10} {:>5} {:>11} {:>13} {:>13} {:>13}\n", "m", "tau_s",
-                           "n_terms", "alpha", "edf", "ci_low", "value", "ci_high");
-  for (const auto& p : curve.points) {
-    std::cout << fmt::format(
-        "{:>10} {:>13.6e} {:>10} {:>5} {:>11.4g} {:>13.6e} {:>13.6e} {:>13.6e}\n", p.m, p.tau_s,
-        p.n_terms, p.alpha, p.edf, p.ci_low, p.value, p.ci_high);
+    std::cout << io::series_curve_json(curve, info).dump() << "\n";
+  } else {
+    std::cout << io::series_curve_table(curve, info);
   }
 }
 

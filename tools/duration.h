@@ -1,13 +1,12 @@
 /// @file
-/// @brief Durations on the command line: "2h", "30min", "600s" or "600" (seconds).
+/// @brief Durations on the command line: io/duration_parser.h's parse_duration_s with the flag
+/// as WHAT, e.g. parse_duration_s(text, "--duration").
 #pragma once
 
-#include <string>
+#include "io/duration_parser.h"
 
 namespace imunoise::tools {
 
-/// Seconds in TEXT ("2h", "30min", "600s", "600"), finite and > 0 (≥ 0 with ALLOW_ZERO).
-/// @throws InputError "FLAG: expected a positive number with unit s, min or h …, got 'TEXT'".
-double parse_duration_s(const std::string& text, const std::string& flag, bool allow_zero = false);
+using io::parse_duration_s;
 
 }  // namespace imunoise::tools

@@ -1,16 +1,13 @@
 #include "tools/recording_input.h"
 
 #include <CLI/CLI.hpp>
-#include <array>
-#include <fstream>
 #include <vector>
 
 #include "common/errors.h"
-#include "io/binary_recording.h"
-#include "io/csv_reader.h"
 #include "io/lcm_fingerprint.h"
 #include "io/lcm_log.h"
 #include "io/lcm_user_imu_decoder.h"
+#include "io/recording_input.h"
 
 namespace imunoise::tools {
 
@@ -51,18 +48,11 @@ std::string channel_of_type(const std::string& path, const io::LcmUserImuDecoder
 /// (--time-col default utime in µs, --gyro-cols and --accel-cols required) in the units of
 /// --time-unit, --gyro-unit and --accel-unit.
 io::LcmUserType user_type_of(const LcmInputFlags& lcm, const io::InputConfig& config) {
-  io::LcmUserType t;
-  t.definition_path = lcm.type_path;
-  t.type_name = lcm.struct_name;
-  if (!config.time_column.empty()) t.time_field = config.time_column;
-  t.time_unit_s = config.time_unit ? io::si_factor(*config.time_unit) : 1e-6;
   if (config.gyro_columns.empty() || config.accel_columns.empty()) {
     throw InputError("--lcm-type " + lcm.type_path +
                      ": name the fields with --gyro-cols and --accel-cols (one 3-element array "
                      "each, e.g. --gyro-cols gyro, or three fields, e.g. --gyro-cols gx,gy,gz)");
   }
-  t.gyro_fields = config.gyro_columns;
-  t.accel_fields = config.accel_columns;
   const io::GyroUnit gyro = config.gyro_unit.value_or(io::GyroUnit::kRadPerS);
   const io::AccelUnit accel = config.accel_unit.value_or(io::AccelUnit::kMPerS2);
   if (io::is_increment(gyro) != io::is_increment(accel)) {
@@ -70,10 +60,7 @@ io::LcmUserType user_type_of(const LcmInputFlags& lcm, const io::InputConfig& co
                      std::string(io::to_string(accel)) +
                      ": a message type holds either rates or increments for both sensors");
   }
-  t.gyro_scale_to_si = io::si_factor(gyro);
-  t.accel_scale_to_si = io::si_factor(accel);
-  t.increments = io::is_increment(gyro);
-  return t;
+  return io::lcm_user_type(lcm.type_path, lcm.struct_name, config);
 }
 
 /// The CSV/TXT-only flags given in CONFIG, in the order they are checked: --delimiter, --rate,
@@ -140,56 +127,34 @@ void add_lcm_input_options(CLI::App& cmd, LcmInputFlags& flags) {
       ->group(group);
 }
 
-bool is_lcm_log_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::array<unsigned char, 4> head{};
-  if (!in.read(reinterpret_cast<char*>(head.data()), 4)) return false;
-  return head[0] == 0xED && head[1] == 0xA1 && head[2] == 0xDA && head[3] == 0x01;
-}
-
 pipeline::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
                                          const LcmInputFlags& lcm, const ProgressCallback& progress,
                                          unsigned threads) {
-  if (io::is_binary_recording_file(path)) {
+  const io::RecordingFormat format = io::detect_recording_format(path);
+  io::LcmImuSource source;
+  if (format == io::RecordingFormat::kBinary) {
     reject_flags_for_binary(path, config, lcm);
-    io::BinaryReadOptions options;
-    options.gyro_full_scale_rad_per_s = config.gyro_full_scale_rad_per_s;
-    options.accel_full_scale_m_per_s2 = config.accel_full_scale_m_per_s2;
-    options.threads = threads;
-    return io::read_binary_recording(path, options, progress);
-  }
-  if (!is_lcm_log_file(path)) {
+  } else if (format == io::RecordingFormat::kTable) {
     if (!lcm.channel.empty() || !lcm.type_path.empty() || !lcm.struct_name.empty()) {
       throw InputError(path +
                        ": --channel, --lcm-type and --lcm-struct apply to LCM logs; this file "
                        "does not start with the LCM log sync word (read as CSV/TXT without them)");
     }
-    return io::read_recording(path, config, progress, threads);
-  }
-  const bool user_type = !lcm.type_path.empty();
-  if (!lcm.struct_name.empty() && !user_type) {
-    throw InputError("--lcm-struct needs --lcm-type (the .lcm file that defines the struct)");
-  }
-  reject_table_flags(path, config, user_type);
-  io::LcmReadOptions options;
-  options.drop_non_finite = config.drop_non_finite.value_or(false);
-  if (user_type) options.user_type = user_type_of(lcm, config);
-  std::string channel = lcm.channel;
-  if (channel.empty()) {
-    channel = options.user_type ? channel_of_type(path, io::LcmUserImuDecoder(*options.user_type))
-                                : default_channel(path);
-  }
-  pipeline::Recording recording = io::read_lcm_imu_log(path, channel, options);
-  if (options.user_type) {
-    // Name the source units as the user wrote them ("deg/s", not a factor).
-    const std::string gyro(io::to_string(config.gyro_unit.value_or(io::GyroUnit::kRadPerS)));
-    const std::string accel(io::to_string(config.accel_unit.value_or(io::AccelUnit::kMPerS2)));
-    for (pipeline::Channel& c : recording.channels) {
-      if (c.name.rfind("gyro_", 0) == 0) c.source_unit = gyro;
-      if (c.name.rfind("accel_", 0) == 0) c.source_unit = accel;
+  } else {
+    const bool user_type = !lcm.type_path.empty();
+    if (!lcm.struct_name.empty() && !user_type) {
+      throw InputError("--lcm-struct needs --lcm-type (the .lcm file that defines the struct)");
+    }
+    reject_table_flags(path, config, user_type);
+    if (user_type) source.user_type = user_type_of(lcm, config);
+    source.channel = lcm.channel;
+    if (source.channel.empty()) {
+      source.channel = source.user_type
+                           ? channel_of_type(path, io::LcmUserImuDecoder(*source.user_type))
+                           : default_channel(path);
     }
   }
-  return recording;
+  return io::read_recording_as(format, path, config, source, progress, threads);
 }
 
 }  // namespace imunoise::tools

@@ -1,8 +1,7 @@
 /// @file
-/// @brief Reading the recording a subcommand analyses: a CSV/TXT table (io/csv_reader.h), an
-/// LCM log written by lcm-logger (io/lcm_log.h) or an imunoise binary recording
-/// (io/binary_recording.h), told apart by the log's sync word and the binary magic, with the
-/// LCM flags (--channel, --lcm-type, --lcm-struct).
+/// @brief The flags of the recording a subcommand analyses: the LCM flags (--channel,
+/// --lcm-type, --lcm-struct), their checks against the format io/recording_input.h finds by
+/// content (a CSV/TXT table, an LCM log or an imunoise binary recording), and the read.
 #pragma once
 
 #include <string>
@@ -26,9 +25,6 @@ struct LcmInputFlags {
 
 /// Adds --channel, --lcm-type and --lcm-struct to `cmd` (values land in `flags`).
 void add_lcm_input_options(CLI::App& cmd, LcmInputFlags& flags);
-
-/// True when `path` starts with the LCM event-log sync word (0xEDA1DA01).
-bool is_lcm_log_file(const std::string& path);
 
 /// The recording at `path`: an imunoise binary recording (any table or LCM flag is an
 /// InputError naming the flag: the header carries rate and units; --drop-non-finite changes

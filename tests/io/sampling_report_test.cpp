@@ -1,5 +1,6 @@
 // Tests of io/sampling_report.h: the text and JSON of a sampling report whose gaps, duplicates
-// and quantization step are known by construction.
+// and quantization step are known by construction; the durations it prints
+// (common/number_text.h duration_text).
 #include "io/sampling_report.h"
 
 #include <gmock/gmock.h>
@@ -10,6 +11,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include "common/number_text.h"
 
 namespace imunoise::io {
 namespace {
@@ -71,6 +74,17 @@ TEST(SamplingReportText, ReadableSummary) {
   EXPECT_THAT(text, HasSubstr("gaps:       1 (longest 20 ms, about 1 samples missing) (first at "
                               "sample 10)"));
   EXPECT_THAT(text, HasSubstr("LSB:        0.001 rad/s (0.0573 deg/s)"));
+}
+
+TEST(DurationText, PicksTheUnitByMagnitudeWithItsDigits) {
+  EXPECT_EQ(duration_text(0.0), "0 s");
+  EXPECT_EQ(duration_text(4.77e-8), "47.7 ns");
+  EXPECT_EQ(duration_text(8.1234e-6), "8.12 us");
+  EXPECT_EQ(duration_text(0.0081256), "8.126 ms");
+  EXPECT_EQ(duration_text(310.123456), "310.123 s");
+  EXPECT_EQ(duration_text(-0.02), "-20 ms");  // the unit from |s|
+  EXPECT_EQ(duration_text(1e-3), "1 ms");
+  EXPECT_EQ(duration_text(1.0), "1 s");
 }
 
 TEST(IntervalHistogram, BinsEveryRegularIntervalAndListsTheGaps) {

@@ -1,4 +1,4 @@
-#include "tools/duration.h"
+#include "io/duration_parser.h"
 
 #include <charconv>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include "common/errors.h"
 #include "common/units.h"
 
-namespace imunoise::tools {
+namespace imunoise::io {
 
-double parse_duration_s(const std::string& text, const std::string& flag, bool allow_zero) {
+double parse_duration_s(const std::string& text, const std::string& what, bool allow_zero) {
   double value = 0.0;
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
@@ -26,8 +26,8 @@ double parse_duration_s(const std::string& text, const std::string& flag, bool a
   }
   const bool in_range = allow_zero ? value >= 0.0 : value > 0.0;
   if (ec != std::errc() || scale == 0.0 || !std::isfinite(value) || !in_range) {
-    std::string what = flag;
-    what.append(": expected a ")
+    std::string message = what;
+    message.append(": expected a ")
         .append(allow_zero ? "non-negative" : "positive")
         .append(" number with unit s, min or h (e.g. 2h, 30min, 600s), got '")
         .append(text)
@@ -36,19 +36,19 @@ double parse_duration_s(const std::string& text, const std::string& flag, bool a
     std::string_view u = unit;
     while (!u.empty() && u.front() == ' ') u.remove_prefix(1);
     if (ec == std::errc() && !unit.empty() && unit.front() == ' ') {
-      what.append(" (write the unit without a space, e.g. 30min)");
+      message.append(" (write the unit without a space, e.g. 30min)");
     } else if (u == "m" || u == "mins" || u == "minute" || u == "minutes") {
-      what.append(" (use 'min' for minutes)");
+      message.append(" (use 'min' for minutes)");
     } else if (u == "sec" || u == "secs" || u == "second" || u == "seconds") {
-      what.append(" (use 's' for seconds)");
+      message.append(" (use 's' for seconds)");
     } else if (u == "hr" || u == "hrs" || u == "hour" || u == "hours") {
-      what.append(" (use 'h' for hours)");
+      message.append(" (use 'h' for hours)");
     } else if (u == "ms") {
-      what.append(" (the smallest unit is s: write e.g. 0.5s)");
+      message.append(" (the smallest unit is s: write e.g. 0.5s)");
     }
-    throw InputError(what);
+    throw InputError(message);
   }
   return value * scale;
 }
 
-}  // namespace imunoise::tools
+}  // namespace imunoise::io

@@ -1,0 +1,108 @@
+#include "io/recording_input.h"
+
+#include <array>
+#include <fstream>
+
+#include "common/errors.h"
+#include "io/binary_recording.h"
+#include "io/csv_reader.h"
+#include "io/lcm_log.h"
+
+namespace imunoise::io {
+
+namespace {
+
+bool ends_with(std::string_view text, std::string_view suffix) {
+  return text.size() > suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
+}
+
+}  // namespace
+
+std::string_view recording_format_name(RecordingFormat format) {
+  switch (format) {
+    case RecordingFormat::kTable:
+      return "CSV";
+    case RecordingFormat::kBinary:
+      return "binary";
+    case RecordingFormat::kLcmLog:
+      return "LCM log";
+  }
+  return "?";
+}
+
+bool is_lcm_log_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 4> head{};
+  if (!in.read(reinterpret_cast<char*>(head.data()), 4)) return false;
+  return head[0] == 0xED && head[1] == 0xA1 && head[2] == 0xDA && head[3] == 0x01;
+}
+
+RecordingFormat detect_recording_format(const std::string& path) {
+  if (is_binary_recording_file(path)) return RecordingFormat::kBinary;
+  if (is_lcm_log_file(path)) return RecordingFormat::kLcmLog;
+  return RecordingFormat::kTable;
+}
+
+std::optional<RecordingFormat> recording_format_of_file_name(std::string_view path) {
+  if (ends_with(path, kBinaryRecordingExtension)) return RecordingFormat::kBinary;
+  if (ends_with(path, ".csv") || ends_with(path, ".txt")) return RecordingFormat::kTable;
+  if (ends_with(path, ".lcm") || ends_with(path, ".log") || ends_with(path, ".lcmlog")) {
+    return RecordingFormat::kLcmLog;
+  }
+  return std::nullopt;
+}
+
+LcmUserType lcm_user_type(const std::string& definition_path, const std::string& struct_name,
+                          const InputConfig& config) {
+  const GyroUnit gyro = config.gyro_unit.value_or(GyroUnit::kRadPerS);
+  const AccelUnit accel = config.accel_unit.value_or(AccelUnit::kMPerS2);
+  IMUNOISE_EXPECT(!config.gyro_columns.empty() && !config.accel_columns.empty(),
+                  "lcm_user_type: the gyro and accelerometer fields must be named");
+  IMUNOISE_EXPECT(is_increment(gyro) == is_increment(accel),
+                  "lcm_user_type: both units must be rates or both increments");
+  LcmUserType t;
+  t.definition_path = definition_path;
+  t.type_name = struct_name;
+  if (!config.time_column.empty()) t.time_field = config.time_column;
+  t.time_unit_s = config.time_unit ? si_factor(*config.time_unit) : 1e-6;
+  t.gyro_fields = config.gyro_columns;
+  t.accel_fields = config.accel_columns;
+  t.gyro_scale_to_si = si_factor(gyro);
+  t.accel_scale_to_si = si_factor(accel);
+  t.increments = is_increment(gyro);
+  return t;
+}
+
+pipeline::Recording read_recording_as(RecordingFormat format, const std::string& path,
+                                      const InputConfig& config, const LcmImuSource& lcm,
+                                      const ProgressCallback& progress, unsigned threads) {
+  switch (format) {
+    case RecordingFormat::kBinary: {
+      BinaryReadOptions options;
+      options.gyro_full_scale_rad_per_s = config.gyro_full_scale_rad_per_s;
+      options.accel_full_scale_m_per_s2 = config.accel_full_scale_m_per_s2;
+      options.threads = threads;
+      return read_binary_recording(path, options, progress);
+    }
+    case RecordingFormat::kTable:
+      return read_recording(path, config, progress, threads);
+    case RecordingFormat::kLcmLog:
+      break;
+  }
+  LcmReadOptions options;
+  options.drop_non_finite = config.drop_non_finite.value_or(false);
+  options.user_type = lcm.user_type;
+  pipeline::Recording recording = read_lcm_imu_log(path, lcm.channel, options);
+  if (options.user_type) {
+    // Name the source units as the user wrote them ("deg/s", not a factor).
+    const std::string gyro(to_string(config.gyro_unit.value_or(GyroUnit::kRadPerS)));
+    const std::string accel(to_string(config.accel_unit.value_or(AccelUnit::kMPerS2)));
+    for (pipeline::Channel& c : recording.channels) {
+      if (c.name.rfind("gyro_", 0) == 0) c.source_unit = gyro;
+      if (c.name.rfind("accel_", 0) == 0) c.source_unit = accel;
+    }
+  }
+  return recording;
+}
+
+}  // namespace imunoise::io

@@ -1,0 +1,62 @@
+/// @file
+/// @brief Reading a recording whatever its format: a CSV/TXT table (io/csv_reader.h), an LCM
+/// log written by lcm-logger (io/lcm_log.h) or an imunoise binary recording
+/// (io/binary_recording.h), told apart by content (the log's sync word, the binary magic) or,
+/// for an output, by the file name. Which settings apply to which format is the caller's to
+/// check (the CLI refuses the flags that do not apply, naming them).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "common/progress.h"
+#include "io/input_config.h"
+#include "io/lcm_user_imu_decoder.h"
+#include "pipeline/recording.h"
+
+namespace imunoise::io {
+
+/// The three recording formats.
+enum class RecordingFormat { kTable, kLcmLog, kBinary };
+
+/// "CSV", "LCM log", "binary".
+std::string_view recording_format_name(RecordingFormat format);
+
+/// True when PATH starts with the LCM event-log sync word (0xEDA1DA01).
+bool is_lcm_log_file(const std::string& path);
+
+/// The format of the file at PATH by its first bytes: kBinary when it starts with
+/// kBinaryMagic, kLcmLog with the LCM sync word, else kTable.
+RecordingFormat detect_recording_format(const std::string& path);
+
+/// The format a file name asks for: kBinary for .imnb, kTable for .csv/.txt, kLcmLog for
+/// .lcm/.log/.lcmlog; nullopt for any other name.
+std::optional<RecordingFormat> recording_format_of_file_name(std::string_view path);
+
+/// A user's IMU message type (io/lcm_user_imu_decoder.h) mapped by the column and unit fields
+/// of CONFIG: the stamp in time_column (default "utime") in time_unit (default µs), the gyro
+/// and accelerometer fields in gyro_columns / accel_columns in gyro_unit / accel_unit (default
+/// rad/s and m/s²), from the struct STRUCT_NAME (empty: the only one) of DEFINITION_PATH.
+/// Contract (the caller checks it with its own message): both column lists are given, and
+/// both units are rates or both increments; ContractViolation otherwise.
+LcmUserType lcm_user_type(const std::string& definition_path, const std::string& struct_name,
+                          const InputConfig& config);
+
+/// Where the IMU samples of an LCM log are.
+struct LcmImuSource {
+  std::string channel;                   ///< the channel to read (not empty)
+  std::optional<LcmUserType> user_type;  ///< the user's own type, else imunoise.imu_sample_t
+};
+
+/// The recording at PATH, read as FORMAT (detect_recording_format): a binary recording with
+/// CONFIG's full-scale values; an LCM log on LCM.channel (NaN/Inf dropped with
+/// CONFIG.drop_non_finite; with a user type, the channels' source units named as CONFIG spells
+/// them, e.g. "deg/s"); or a table read with CONFIG (io::read_recording). PROGRESS (optional)
+/// follows the bytes read of a table or a binary recording; THREADS parse or read them (0 =
+/// all cores; the result does not depend on it). Throws as the reader of FORMAT.
+pipeline::Recording read_recording_as(RecordingFormat format, const std::string& path,
+                                      const InputConfig& config, const LcmImuSource& lcm,
+                                      const ProgressCallback& progress = {}, unsigned threads = 0);
+
+}  // namespace imunoise::io
