@@ -8,6 +8,12 @@
 /// Accepted: an optional header row of column names (else columns are addressed by 1-based
 /// index), '#' comment lines and blank lines anywhere, CRLF, a UTF-8 BOM, no final newline.
 /// Every error is an InputError "FILE:LINE:COL: problem" showing the offending token.
+///
+/// The parts, internal to io/ (namespace csv_detail): io/decimal_number.h (a token to a
+/// number), io/csv_text.h (shared text conventions), io/table_layout (sniffing the layout),
+/// io/line_source (the streaming source), io/csv_row_parser (a line to a row),
+/// io/csv_chunked_parse (the mapped parallel parse); io/csv_reader.cpp is TableReader,
+/// io/imu_column_mapping.cpp read_series and read_recording.
 #pragma once
 
 #include <cstddef>
