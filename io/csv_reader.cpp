@@ -7,10 +7,7 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstring>
-#include <exception>
 #include <optional>
-#include <stdexcept>
 #include <system_error>
 
 #include "common/errors.h"
@@ -137,7 +134,7 @@ std::size_t TableReader::resolve_column(std::string_view selector) const {
 TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_non_finite,
                             const ProgressCallback& progress, const ReadParallelism& parallelism) {
   Impl& im = *impl_;
-  if (im.consumed) throw std::logic_error("TableReader::read called twice");
+  IMUNOISE_EXPECT(!im.consumed, "TableReader::read called twice");
   im.consumed = true;
   const TableLayout& layout = im.layout;
 
@@ -151,14 +148,14 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
   std::vector<std::size_t> output_slot(columns.size());
   for (std::size_t r = 0; r < columns.size(); ++r) {
     const ColumnRequest& req = columns[r];
-    if (req.index >= plan.column_count) throw std::out_of_range("TableReader::read: column index");
+    IMUNOISE_EXPECT(req.index < plan.column_count, "TableReader::read: column index");
     int& slot = plan.slot_of[req.index];
     if (slot < 0) {
       slot = static_cast<int>(plan.relative.size());
       plan.relative.push_back(req.relative_to_first);
     } else if (static_cast<bool>(plan.relative[static_cast<std::size_t>(slot)]) !=
                req.relative_to_first) {
-      throw std::invalid_argument("TableReader::read: column requested both relative and not");
+      throw ContractViolation("TableReader::read: column requested both relative and not");
     }
     output_slot[r] = static_cast<std::size_t>(slot);
   }

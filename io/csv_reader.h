@@ -109,9 +109,11 @@ class TableReader {
   /// As find_column; throws InputError listing the available columns.
   std::size_t resolve_column(std::string_view selector) const;
 
-  /// Reads all rows once. NaN/Inf: InputError, or with drop_non_finite the row is dropped and
-  /// counted. Throws InputError at the first malformed token or wrong column count. A column
-  /// may be requested twice only with the same relative_to_first (else invalid_argument).
+  /// Reads all rows once (a second call is a ContractViolation). NaN/Inf: InputError, or with
+  /// drop_non_finite the row is dropped and counted. Throws InputError at the first malformed
+  /// token or wrong column count. Every index must be below layout().column_count, and a
+  /// column may be requested twice only with the same relative_to_first (else
+  /// ContractViolation).
   /// PROGRESS (optional) gets ("reading", bytes parsed, file size) from the calling thread
   /// after each block or chunk of a regular file. The result and the error (the first in file
   /// order) do not depend on PARALLELISM.

@@ -313,5 +313,23 @@ TEST(TableReader, RelativeIntegerColumnKeepsNanosecondPrecision) {
   EXPECT_THAT(data.columns[1], ElementsAre(1.0, 2.0, 3.0));
 }
 
+// Requests TableReader::read documents as the caller's to avoid are contract violations, not
+// input errors: a second read, an index past the columns, one column both relative and not.
+TEST(TableReader, CallerBugsAreContractViolations) {
+  const std::string path = fixture("contract.csv", "1,2\n3,4\n");
+  const ColumnRequest first[] = {{0, false}};
+  TableReader twice(path);
+  EXPECT_EQ(twice.read(first, false).columns[0].size(), 2u);
+  test::expect_throw_containing<ContractViolation>([&] { twice.read(first, false); },
+                                                   "TableReader::read called twice");
+  const ColumnRequest beyond[] = {{2, false}};
+  test::expect_throw_containing<ContractViolation>([&] { TableReader(path).read(beyond, false); },
+                                                   "TableReader::read: column index");
+  const ColumnRequest mixed[] = {{0, true}, {0, false}};
+  test::expect_throw_containing<ContractViolation>(
+      [&] { TableReader(path).read(mixed, false); },
+      "TableReader::read: column requested both relative and not");
+}
+
 }  // namespace
 }  // namespace imunoise::io
