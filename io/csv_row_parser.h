@@ -97,9 +97,10 @@ struct Origin {
   }
 };
 
-/// Splits a content line like for_each_field and converts the requested fields, in field
-/// order, so the first refused field is the one reported. False with ERROR (line unset) when
-/// the line is refused; ROW.non_finite > 0 means the row is to be dropped.
+/// Splits a content line as the sniffing does (for_each_field, io/table_layout.cpp) and
+/// converts the requested fields, in field order, so the first refused field is the one
+/// reported. False with ERROR (line unset) when the line is refused; ROW.non_finite > 0 means
+/// the row is to be dropped.
 bool parse_row(const ReadPlan& plan, std::string_view line, RowValues& row, RowError& error);
 
 /// Sequential handling of lines in file order: the streamed path, and the mapped path up to
