@@ -8,6 +8,12 @@
 /// Accepted: an optional header row of column names (else columns are addressed by 1-based
 /// index), '#' comment lines and blank lines anywhere, CRLF, a UTF-8 BOM, no final newline.
 /// Every error is an InputError "FILE:LINE:COL: problem" showing the offending token.
+///
+/// The parts, internal to io/ (namespace csv_detail): io/decimal_number.h (a token to a
+/// number), io/csv_text.h (shared text conventions), io/table_layout (sniffing the layout),
+/// io/line_source (the streaming source), io/csv_row_parser (a line to a row),
+/// io/csv_chunked_parse (the mapped parallel parse); io/csv_reader.cpp is TableReader,
+/// io/imu_column_mapping.cpp read_series and read_recording.
 #pragma once
 
 #include <cstddef>
@@ -103,9 +109,11 @@ class TableReader {
   /// As find_column; throws InputError listing the available columns.
   std::size_t resolve_column(std::string_view selector) const;
 
-  /// Reads all rows once. NaN/Inf: InputError, or with drop_non_finite the row is dropped and
-  /// counted. Throws InputError at the first malformed token or wrong column count. A column
-  /// may be requested twice only with the same relative_to_first (else invalid_argument).
+  /// Reads all rows once (a second call is a ContractViolation). NaN/Inf: InputError, or with
+  /// drop_non_finite the row is dropped and counted. Throws InputError at the first malformed
+  /// token or wrong column count. Every index must be below layout().column_count, and a
+  /// column may be requested twice only with the same relative_to_first (else
+  /// ContractViolation).
   /// PROGRESS (optional) gets ("reading", bytes parsed, file size) from the calling thread
   /// after each block or chunk of a regular file. The result and the error (the first in file
   /// order) do not depend on PARALLELISM.

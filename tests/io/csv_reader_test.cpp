@@ -313,33 +313,22 @@ TEST(TableReader, RelativeIntegerColumnKeepsNanosecondPrecision) {
   EXPECT_THAT(data.columns[1], ElementsAre(1.0, 2.0, 3.0));
 }
 
-// The progress callback follows the bytes read, block by block, up to the file size, and the
-// recording read with it is the same as without.
-TEST(ReadRecording, ProgressFollowsTheBytesReadAndChangesNothing) {
-  std::string text =
-      "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s,accel_x_m_per_s2,"
-      "accel_y_m_per_s2,accel_z_m_per_s2\n";
-  for (int i = 0; i < 60000; ++i) {
-    text.append(std::to_string(0.01 * i));
-    for (int c = 0; c < 6; ++c) text.append(",").append(std::to_string(1e-3 * ((i + c) % 97)));
-    text.append("\n");
-  }
-  const std::string path = fixture("progress.csv", text);
-  std::vector<std::int64_t> done_seen;
-  std::int64_t total_seen = 0;
-  const pipeline::Recording with = read_recording(
-      path, InputConfig{}, [&](std::string_view stage, std::int64_t done, std::int64_t total) {
-        EXPECT_EQ(stage, "reading");
-        done_seen.push_back(done);
-        total_seen = total;
-      });
-  const pipeline::Recording without = read_recording(path, InputConfig{});
-  EXPECT_EQ(total_seen, static_cast<std::int64_t>(text.size()));
-  ASSERT_GE(done_seen.size(), 2u) << "more than one 1 MiB block";
-  EXPECT_TRUE(std::is_sorted(done_seen.begin(), done_seen.end()));
-  EXPECT_EQ(done_seen.back(), total_seen);
-  ASSERT_EQ(with.channels.size(), without.channels.size());
-  EXPECT_EQ(with.channels[0].values, without.channels[0].values);
+// Requests TableReader::read documents as the caller's to avoid are contract violations, not
+// input errors: a second read, an index past the columns, one column both relative and not.
+TEST(TableReader, CallerBugsAreContractViolations) {
+  const std::string path = fixture("contract.csv", "1,2\n3,4\n");
+  const ColumnRequest first[] = {{0, false}};
+  TableReader twice(path);
+  EXPECT_EQ(twice.read(first, false).columns[0].size(), 2u);
+  test::expect_throw_containing<ContractViolation>([&] { twice.read(first, false); },
+                                                   "TableReader::read called twice");
+  const ColumnRequest beyond[] = {{2, false}};
+  test::expect_throw_containing<ContractViolation>([&] { TableReader(path).read(beyond, false); },
+                                                   "TableReader::read: column index");
+  const ColumnRequest mixed[] = {{0, true}, {0, false}};
+  test::expect_throw_containing<ContractViolation>(
+      [&] { TableReader(path).read(mixed, false); },
+      "TableReader::read: column requested both relative and not");
 }
 
 }  // namespace

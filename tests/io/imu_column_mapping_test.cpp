@@ -1,17 +1,21 @@
-// Tests of read_recording (io/csv_reader.h) and pipeline/recording.h: column mapping, SI conversion
-// of every unit, increments, fixed rate, exact ns stamps, and the mapping errors.
-#include "pipeline/recording.h"
-
+// Tests of read_recording (io/csv_reader.h, io/imu_column_mapping.cpp) and pipeline/recording.h:
+// column mapping, SI conversion of every unit, increments, fixed rate, exact ns stamps, progress,
+// and the mapping errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/errors.h"
 #include "common/units.h"
 #include "io/csv_reader.h"
+#include "pipeline/recording.h"
 #include "test_support.h"
 
 namespace imunoise::io {
@@ -296,6 +300,35 @@ TEST(ReadRecordingFuzzRegression, AbsurdGapsAreReportedWithoutOverflow) {
   const pipeline::Recording rec = read_recording(path, {});
   EXPECT_EQ(rec.report.timing.gap_count, 2);
   EXPECT_EQ(rec.report.timing.missing_samples, std::numeric_limits<std::int64_t>::max());
+}
+
+// The progress callback follows the bytes read, block by block, up to the file size, and the
+// recording read with it is the same as without.
+TEST(ReadRecording, ProgressFollowsTheBytesReadAndChangesNothing) {
+  std::string text =
+      "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s,accel_x_m_per_s2,"
+      "accel_y_m_per_s2,accel_z_m_per_s2\n";
+  for (int i = 0; i < 60000; ++i) {
+    text.append(std::to_string(0.01 * i));
+    for (int c = 0; c < 6; ++c) text.append(",").append(std::to_string(1e-3 * ((i + c) % 97)));
+    text.append("\n");
+  }
+  const std::string path = fixture("progress.csv", text);
+  std::vector<std::int64_t> done_seen;
+  std::int64_t total_seen = 0;
+  const pipeline::Recording with = read_recording(
+      path, InputConfig{}, [&](std::string_view stage, std::int64_t done, std::int64_t total) {
+        EXPECT_EQ(stage, "reading");
+        done_seen.push_back(done);
+        total_seen = total;
+      });
+  const pipeline::Recording without = read_recording(path, InputConfig{});
+  EXPECT_EQ(total_seen, static_cast<std::int64_t>(text.size()));
+  ASSERT_GE(done_seen.size(), 2u) << "more than one 1 MiB block";
+  EXPECT_TRUE(std::is_sorted(done_seen.begin(), done_seen.end()));
+  EXPECT_EQ(done_seen.back(), total_seen);
+  ASSERT_EQ(with.channels.size(), without.channels.size());
+  EXPECT_EQ(with.channels[0].values, without.channels[0].values);
 }
 
 }  // namespace

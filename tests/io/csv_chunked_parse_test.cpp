@@ -1,6 +1,7 @@
-// Tests of the memory-mapped, chunked, multi-threaded path of io/csv_reader.h: for any chunk
-// size and thread count it must give exactly what the streamed sequential path gives (values
-// bit for bit, line map, drop counts, first row) and the same first error in file order.
+// Tests of the memory-mapped, chunked, multi-threaded path of io/csv_reader.h
+// (io/csv_chunked_parse): for any chunk size and thread count it must give exactly what the
+// streamed sequential path gives (values bit for bit, line map, drop counts, first row) and the
+// same first error in file order.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
