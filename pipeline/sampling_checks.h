@@ -1,7 +1,8 @@
 /// @file
 /// @brief Sampling-quality checks of a recording: rate, gaps, time-stamp order and jitter,
-/// saturation and quantization step per channel. Pure functions over time stamps and values;
-/// the text and JSON of `imunoise check` are io/sampling_report.h.
+/// saturation and quantization step per channel. Pure functions over time stamps and values
+/// (pipeline/sampling_timing.cpp, channel_checks.cpp, lsb_estimate.cpp); the text and JSON of
+/// `imunoise check` are io/sampling_report.h.
 #pragma once
 
 #include <cstdint>
