@@ -39,11 +39,6 @@ int overlapping_order(DeviationType type) {
 }
 
 /// theory.md §2: OAVAR = S/(2τ²n), OHVAR = S/(6τ²n), from the sum S of n squared differences.
-double overlapping_variance(int order, double sum, std::int64_t n_terms, std::int64_t m,
-                            double tau0_s) {
-  const double tau = static_cast<double>(m) * tau0_s;
-  return sum / ((order == 2 ? 2.0 : 6.0) * tau * tau * static_cast<double>(n_terms));
-}
 
 /// Σ_j (Σ_{k=j}^{j+m−1} d_k)², j = 0..n−1, d = second difference at stride m (MVAR, SP 1065).
 /// The inner sum w_j is a sliding window: w_{j+1} = w_j + third_difference(j), O(1) per j —
@@ -198,7 +193,8 @@ std::vector<VarianceEstimate> overlapping_variances(DeviationType type,
   std::vector<double> sums(m_values.size());
   detail::overlapping_difference_sums(phase, order, m_values, sums);
   for (std::size_t i = 0; i < m_values.size(); ++i) {
-    out[i].variance = overlapping_variance(order, sums[i], out[i].n_terms, m_values[i], tau0_s);
+    out[i].variance =
+        detail::overlapping_variance_of_sum(order, sums[i], out[i].n_terms, m_values[i], tau0_s);
   }
   return out;
 }
@@ -239,7 +235,7 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
     case DeviationType::oadev: {  // theory.md §2 overlapping AVAR
       double s = 0.0;
       detail::overlapping_difference_sums(phase, 2, std::span(&m, 1), std::span(&s, 1));
-      out.variance = overlapping_variance(2, s, n, m, tau0_s);
+      out.variance = detail::overlapping_variance_of_sum(2, s, n, m, tau0_s);
       break;
     }
     case DeviationType::mdev:
@@ -261,7 +257,7 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
     case DeviationType::ohdev: {  // theory.md §2 overlapping Hadamard
       double s = 0.0;
       detail::overlapping_difference_sums(phase, 3, std::span(&m, 1), std::span(&s, 1));
-      out.variance = overlapping_variance(3, s, n, m, tau0_s);
+      out.variance = detail::overlapping_variance_of_sum(3, s, n, m, tau0_s);
       break;
     }
     case DeviationType::totdev: {  // theory.md §2 total variance (SP 1065 eq. 25)
@@ -444,7 +440,7 @@ DeviationCurve single_record_curve(std::span<const double> phase, double tau0_s,
     VarianceEstimate v;
     if (order != 0) {
       v.n_terms = estimator_term_count(options.type, curve.n_phase, m);
-      v.variance = overlapping_variance(order, sums[i], v.n_terms, m, tau0_s);
+      v.variance = detail::overlapping_variance_of_sum(order, sums[i], v.n_terms, m, tau0_s);
     } else {
       v = point_variance(options, phase, m, tau0_s, p.alpha);
     }
@@ -493,6 +489,31 @@ bool is_poolable(DeviationType type) {
     default:
       return false;
   }
+}
+
+double edf_for(DeviationType type, int alpha, std::int64_t m, std::int64_t n_phase) {
+  switch (type) {
+    case DeviationType::adev:
+      return edf_greenhall(alpha, 2, m, n_phase, false, false);
+    case DeviationType::oadev:
+      return edf_greenhall(alpha, 2, m, n_phase, true, false);
+    case DeviationType::mdev:
+    case DeviationType::tdev:
+      return edf_greenhall(alpha, 2, m, n_phase, true, true);
+    case DeviationType::hdev:
+      return edf_greenhall(alpha, 3, m, n_phase, false, false);
+    case DeviationType::ohdev:
+      return edf_greenhall(alpha, 3, m, n_phase, true, false);
+    case DeviationType::totdev:
+      return edf_totdev(alpha, m, n_phase);
+    case DeviationType::mtotdev:
+    case DeviationType::ttotdev:
+    case DeviationType::htotdev:
+      return total_family_edf(*total_family_type(type), alpha, m, n_phase);
+    case DeviationType::theo1:
+      return theo1_edf(alpha, m, n_phase);
+  }
+  throw AnalysisError("edf_for: unknown deviation type");
 }
 
 double curve_edf(const DeviationCurve& curve, int alpha, std::int64_t m) {
@@ -599,7 +620,8 @@ DeviationCurve pooled_curve(std::span<const std::span<const double>> phases, dou
       VarianceEstimate v;
       if (order != 0) {
         v.n_terms = estimator_term_count(options.type, n_k, m);
-        v.variance = overlapping_variance(order, piece_sums[k][i], v.n_terms, m, tau0_s);
+        v.variance =
+            detail::overlapping_variance_of_sum(order, piece_sums[k][i], v.n_terms, m, tau0_s);
       } else {
         v = allan_family_variance(options.type, phases[k], m, tau0_s);
       }

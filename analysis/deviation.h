@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/deviation_type.h"
+#include "analysis/variance_estimate.h"
 
 namespace imunoise::analysis {
 
@@ -28,12 +29,6 @@ void phase_from_rate_in_place(std::vector<double>& samples, double tau0_s);
 /// statistic here is invariant to that trend; removing it keeps digits on large biases.
 std::vector<double> detrended_phase(std::span<const double> phase);
 /// @}
-
-/// Variance estimate at one averaging factor, with the number of terms summed (Stable32 "#").
-struct VarianceEstimate {
-  double variance = 0.0;     ///< σ²(τ) in (phase unit / s)², i.e. rate unit squared
-  std::int64_t n_terms = 0;  ///< number of differences in the sum
-};
 
 /// One statistic at averaging factor m (τ = m·τ0) from M phase samples. Throws
 /// imunoise::AnalysisError when m < 1 or the record is too short for a single term.
@@ -129,6 +124,13 @@ AllanHadamardCurves compute_pooled_allan_hadamard(std::span<const std::span<cons
                                                   std::span<const std::int64_t> oadev_factors,
                                                   std::span<const std::int64_t> ohdev_factors,
                                                   const DeviationOptions& options);
+
+/// The EDF imunoise attaches to each statistic (the models of analysis/edf.h,
+/// total_family.h and extra_deviations.h): adev → GR03 (d=2, non-overlapping,
+/// unmodified); oadev → d=2 overlapping; mdev and tdev → d=2 overlapping modified;
+/// hdev → d=3 non-overlapping; ohdev → d=3 overlapping; totdev → edf_totdev(); mtotdev, ttotdev,
+/// htotdev → total_family_edf(); theo1 → theo1_edf().
+double edf_for(DeviationType type, int alpha, std::int64_t m, std::int64_t n_phase);
 
 /// EDF of a point of CURVE at averaging factor M for noise type ALPHA: edf_for() at the
 /// curve's n_phase, or for a pooled curve the sum over its pieces that hold a term at M.

@@ -2,7 +2,8 @@
 /// @brief Internal kernel of the overlapping Allan and Hadamard variances: the sums of squared
 /// second / third differences of phase data at many averaging factors, computed so that the
 /// small factors share one cache-resident pass over memory (theory.md §2, "Numerics").
-/// Not part of the public analysis API; deviation.cpp is its user.
+/// Not part of the public analysis API; deviation.cpp is its user, and the estimators whose
+/// value at m = 1 is OAVAR or OHVAR (PDEV, HTOTDEV) call lag_one_overlapping_variance.
 #pragma once
 
 #include <cstddef>
@@ -51,5 +52,23 @@ void allan_hadamard_difference_sums(std::span<const double> x,
 
 /// Large factors per pass of allan_hadamard_difference_sums (3 own streams each).
 inline constexpr std::size_t kLargeJointPassFactors = 8;
+
+/// OAVAR (ORDER 2) or OHVAR (ORDER 3) from its difference sum SUM over N_TERMS terms at factor
+/// M: SUM / (c·τ²·N_TERMS), c = 2 or 6, τ = m·τ0 (theory.md §2).
+inline double overlapping_variance_of_sum(int order, double sum, std::int64_t n_terms,
+                                          std::int64_t m, double tau0_s) {
+  const double tau = static_cast<double>(m) * tau0_s;
+  return sum / ((order == 2 ? 2.0 : 6.0) * tau * tau * static_cast<double>(n_terms));
+}
+
+/// OAVAR (ORDER 2) or OHVAR (ORDER 3) of X at m = 1 (M − ORDER terms, M − ORDER ≥ 1 and τ0
+/// checked by the caller): bit for bit allan_family_variance(oadev / ohdev, X, 1, τ0).
+inline double lag_one_overlapping_variance(std::span<const double> x, int order, double tau0_s) {
+  const std::int64_t one = 1;
+  double sum = 0.0;
+  overlapping_difference_sums(x, order, std::span(&one, 1), std::span(&sum, 1));
+  return overlapping_variance_of_sum(order, sum, static_cast<std::int64_t>(x.size()) - order, 1,
+                                     tau0_s);
+}
 
 }  // namespace imunoise::analysis::detail

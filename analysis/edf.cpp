@@ -13,8 +13,6 @@
 #include <limits>
 #include <string>
 
-#include "analysis/extra_deviations.h"
-#include "analysis/total_family.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
@@ -308,31 +306,6 @@ double edf_simple_oadev(int alpha, std::int64_t m, std::int64_t n_phase) {
       throw AnalysisError("edf_simple_oadev: alpha must be in -2..2 (got " + std::to_string(alpha) +
                           ")");
   }
-}
-
-double edf_for(DeviationType type, int alpha, std::int64_t m, std::int64_t n_phase) {
-  switch (type) {
-    case DeviationType::adev:
-      return edf_greenhall(alpha, 2, m, n_phase, false, false);
-    case DeviationType::oadev:
-      return edf_greenhall(alpha, 2, m, n_phase, true, false);
-    case DeviationType::mdev:
-    case DeviationType::tdev:
-      return edf_greenhall(alpha, 2, m, n_phase, true, true);
-    case DeviationType::hdev:
-      return edf_greenhall(alpha, 3, m, n_phase, false, false);
-    case DeviationType::ohdev:
-      return edf_greenhall(alpha, 3, m, n_phase, true, false);
-    case DeviationType::totdev:
-      return edf_totdev(alpha, m, n_phase);
-    case DeviationType::mtotdev:
-    case DeviationType::ttotdev:
-    case DeviationType::htotdev:
-      return total_family_edf(*total_family_type(type), alpha, m, n_phase);
-    case DeviationType::theo1:
-      return theo1_edf(alpha, m, n_phase);
-  }
-  throw AnalysisError("edf_for: unknown deviation type");
 }
 
 }  // namespace imunoise::analysis

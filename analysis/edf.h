@@ -68,11 +68,6 @@ double edf_totdev(int alpha, std::int64_t m, std::int64_t n_phase);
 /// @param[in] alpha 2, 1, 0, −1 or −2
 double edf_simple_oadev(int alpha, std::int64_t m, std::int64_t n_phase);
 
-/// The EDF imunoise attaches to each statistic: adev → GR03 (d=2, non-overlapping,
-/// unmodified); oadev → d=2 overlapping; mdev and tdev → d=2 overlapping modified;
-/// hdev → d=3 non-overlapping; ohdev → d=3 overlapping; totdev → edf_totdev().
-double edf_for(DeviationType type, int alpha, std::int64_t m, std::int64_t n_phase);
-
 /// @}
 
 }  // namespace imunoise::analysis

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "analysis/difference_sums.h"
 #include "analysis/kernel_support.h"
 #include "common/errors.h"
 
@@ -161,7 +162,9 @@ VarianceEstimate parabolic_variance(std::span<const double> phase, std::int64_t 
   IMUNOISE_CHECK(M - 2 * m >= 1, AnalysisError,
                  "pdev: too few samples at m = " + std::to_string(m) + ": " + std::to_string(M) +
                      " phase samples give no term (need >= " + std::to_string(2 * m + 1) + ")");
-  if (m == 1) return allan_family_variance(DeviationType::oadev, phase, 1, tau0_s);
+  if (m == 1) {  // PDEV at m = 1 is OADEV (SP 1065)
+    return {detail::lag_one_overlapping_variance(phase, 2, tau0_s), M - 2};
+  }
   const std::int64_t n = M - 2 * m;
   const double md = static_cast<double>(m);
   const double tau = md * tau0_s;

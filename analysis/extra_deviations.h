@@ -9,7 +9,8 @@
 #include <cstdint>
 #include <span>
 
-#include "analysis/deviation.h"
+#include "analysis/deviation_type.h"
+#include "analysis/variance_estimate.h"
 
 namespace imunoise::analysis {
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/deviation_type.h"
+#include "analysis/difference_sums.h"
 #include "analysis/edf.h"
 #include "analysis/kernel_support.h"
 #include "common/errors.h"
@@ -156,7 +157,7 @@ VarianceEstimate total_family_variance(TotalFamilyType type, std::span<const dou
   if (type == TotalFamilyType::htotdev) {
     if (m == 1) {
       // SP 1065 §5.2.14 / Stable32: the overlapping Hadamard variance at m = 1, unbiased.
-      out.variance = allan_family_variance(DeviationType::ohdev, phase, 1, tau0_s).variance;
+      out.variance = detail::lag_one_overlapping_variance(phase, 3, tau0_s);
       return out;
     }
     // Frequency values; the 1/τ0 scale is applied once at the end.

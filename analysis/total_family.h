@@ -26,7 +26,8 @@
 #include <optional>
 #include <span>
 
-#include "analysis/deviation.h"
+#include "analysis/deviation_type.h"
+#include "analysis/variance_estimate.h"
 
 namespace imunoise::analysis {
 

@@ -15,9 +15,10 @@
 #include <vector>
 
 #include "common/progress.h"
-#include "io/csv_reader.h"
 #include "io/csv_row_parser.h"
 #include "io/mapping_guard.h"
+#include "io/table_data.h"
+#include "io/table_layout.h"
 
 namespace imunoise::io::csv_detail {
 

@@ -16,9 +16,10 @@
 #include <vector>
 
 #include "common/errors.h"
-#include "io/csv_reader.h"
 #include "io/csv_text.h"
 #include "io/input_config.h"
+#include "io/table_data.h"
+#include "io/table_layout.h"
 
 namespace imunoise::io::csv_detail {
 

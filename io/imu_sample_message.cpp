@@ -35,11 +35,11 @@ pipeline::ImuSampleFields imu_sample_fields() {
   const auto columns_of = [](bool increments) {
     imunoise::imu_sample_t m{};
     m.has_increments = increments;
-    ImuSampleColumns columns;
+    pipeline::ImuSampleColumns columns;
     append_imu_sample(m, columns);
     return columns;
   };
-  const ImuSampleColumns rates = columns_of(false), increments = columns_of(true);
+  const pipeline::ImuSampleColumns rates = columns_of(false), increments = columns_of(true);
   pipeline::ImuSampleFields fields;
   fields.rate_fields = rates.source_fields;
   fields.rate_units = rates.source_units;

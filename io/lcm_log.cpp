@@ -19,7 +19,7 @@
 #include <utility>
 
 #include "common/errors.h"
-#include "io/imu_samples.h"
+#include "pipeline/imu_samples.h"
 #include "io/lcm_fingerprint.h"
 #include "io/lcm_messages.h"
 
@@ -262,7 +262,7 @@ pipeline::Recording read_user_type_log(const std::string& path, const std::strin
   const std::string expected = decoder.type_name() + " (fingerprint " +
                                lcm_fingerprint_text(decoder.fingerprint()) + ", from " +
                                decoder.definition_path() + ")";
-  ImuSampleColumns samples = decoder.make_columns();
+  pipeline::ImuSampleColumns samples = decoder.make_columns();
   std::string error;
   read_channel(path, channel, decoder.fingerprint(), expected, [&](const EventScanner& scanner) {
     if (!decoder.append(scanner.data(), options.drop_non_finite, samples, error)) {
@@ -270,7 +270,7 @@ pipeline::Recording read_user_type_log(const std::string& path, const std::strin
                    std::to_string(scanner.event_number()) + ")");
     }
   });
-  return recording_from_imu_samples(std::move(samples), path, channel);
+  return pipeline::recording_from_imu_samples(std::move(samples), path, channel);
 }
 
 }  // namespace
@@ -309,7 +309,7 @@ pipeline::Recording read_lcm_imu_log(const std::string& path, const std::string&
   using imunoise::imu_sample_t;
   const auto fingerprint = static_cast<std::uint64_t>(imu_sample_t::getHash());
   const std::string expected_name = "imunoise.imu_sample_t";
-  ImuSampleColumns samples;
+  pipeline::ImuSampleColumns samples;
   std::optional<bool> increments;
   const auto on_message = [&](const EventScanner& scanner) {
     const auto data = scanner.data();
@@ -351,7 +351,7 @@ pipeline::Recording read_lcm_imu_log(const std::string& path, const std::string&
   read_channel(path, channel, fingerprint,
                expected_name + " (fingerprint " + lcm_fingerprint_text(fingerprint) + ")",
                on_message);
-  return recording_from_imu_samples(std::move(samples), path, channel);
+  return pipeline::recording_from_imu_samples(std::move(samples), path, channel);
 }
 
 }  // namespace imunoise::io

@@ -61,7 +61,7 @@ std::string first_non_finite_field(const imunoise::imu_sample_t& m, std::int64_t
   return first;
 }
 
-void append_imu_sample(const imunoise::imu_sample_t& m, ImuSampleColumns& samples) {
+void append_imu_sample(const imunoise::imu_sample_t& m, pipeline::ImuSampleColumns& samples) {
   const bool increments = m.has_increments != 0;
   if (samples.size() == 0) {
     samples.increments = increments;

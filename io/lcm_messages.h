@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "analysis/deviation.h"
-#include "io/imu_samples.h"
+#include "pipeline/imu_samples.h"
 #include "models/noise_model.h"
 #include "pipeline/drift_series.h"
 
@@ -27,7 +27,7 @@ std::string first_non_finite_field(const imunoise::imu_sample_t& m, std::int64_t
 /// Appends `m` to `samples`: rates, or increments when has_increments (the first sample of an
 /// empty `samples` sets `increments` and the source field names; the caller checks that later
 /// samples agree). Temperature is kept while every sample has one.
-void append_imu_sample(const imunoise::imu_sample_t& m, ImuSampleColumns& samples);
+void append_imu_sample(const imunoise::imu_sample_t& m, pipeline::ImuSampleColumns& samples);
 
 /// The noise_model_t of `model` (axes in model order; one GM per axis: the first fitted GM
 /// term, else none). `utime_us` is the publication time.

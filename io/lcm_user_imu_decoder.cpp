@@ -111,8 +111,8 @@ LcmUserImuDecoder::LcmUserImuDecoder(const LcmUserType& user_type)
   add_group(user_type.accel_fields, user_type.accel_scale_to_si, "accel", 3);
 }
 
-ImuSampleColumns LcmUserImuDecoder::make_columns() const {
-  ImuSampleColumns columns;
+pipeline::ImuSampleColumns LcmUserImuDecoder::make_columns() const {
+  pipeline::ImuSampleColumns columns;
   columns.increments = increments_;
   for (std::size_t c = 0; c < 6; ++c) {
     columns.source_fields[c] = decoder_.slot_path(value_slots_[c]);
@@ -150,7 +150,7 @@ bool LcmUserImuDecoder::stamp_us(std::int64_t* out, std::string& error) const {
 }
 
 bool LcmUserImuDecoder::append(std::span<const unsigned char> message, bool drop_non_finite,
-                               ImuSampleColumns& samples, std::string& error) {
+                               pipeline::ImuSampleColumns& samples, std::string& error) {
   if (!decoder_.decode(message, slot_values_, error)) {
     error =
         "the message does not decode as " + type_name() + " (" + definition_path_ + "): " + error;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/imu_samples.h"
+#include "pipeline/imu_samples.h"
 #include "io/lcm_field_decoder.h"
 
 namespace imunoise::io {
@@ -46,14 +46,14 @@ class LcmUserImuDecoder {
   const std::string& definition_path() const { return definition_path_; }
 
   /// Empty columns carrying the increments flag and the source fields and units.
-  ImuSampleColumns make_columns() const;
+  pipeline::ImuSampleColumns make_columns() const;
 
   /// Decodes one message and appends it to `samples`. A NaN/Inf among the used fields drops
   /// the message (counted in `samples`) when `drop_non_finite`, else fails. False, with the
   /// problem in `error`, when the message does not decode, has a non-finite value (and
   /// !drop_non_finite) or a stamp beyond the int64 µs range.
   bool append(std::span<const unsigned char> message, bool drop_non_finite,
-              ImuSampleColumns& samples, std::string& error);
+              pipeline::ImuSampleColumns& samples, std::string& error);
 
  private:
   bool stamp_us(std::int64_t* out, std::string& error) const;

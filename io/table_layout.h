@@ -1,18 +1,36 @@
 /// @file
-/// @brief Internal to the CSV reader (io/csv_reader.h): finding a table's layout from its first
-/// lines (TableLayout, declared in io/csv_reader.h, is defined here too). Skips '#' comment and
+/// @brief The layout of a numeric text table (TableLayout) and, internal to the CSV reader
+/// (io/csv_reader.h), finding it from the table's first lines. Skips '#' comment and
 /// blank lines, CRLF and a UTF-8 BOM; finds the delimiter (or takes the one requested); takes
 /// the first content line as a header when it holds no number, else addresses the columns by
 /// position. Refuses empty, UTF-16, binary and comment-only files.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
-#include "io/csv_reader.h"
 #include "io/input_config.h"
 
-namespace imunoise::io::csv_detail {
+namespace imunoise::io {
+
+/// Shape of a table, found from its first lines.
+struct TableLayout {
+  std::string path;
+  Delimiter delimiter = Delimiter::kWhitespace;  ///< resolved, never kAuto
+  std::size_t column_count = 0;
+  std::vector<std::string> column_names;  ///< header names; empty when there is no header
+  std::int64_t header_line = 0;           ///< 1-based line of the header; 0 = none
+
+  bool has_header() const { return !column_names.empty(); }
+  /// "'gyro_x' (column 2)" with a header, "column 2" without (index is 0-based).
+  std::string column_label(std::size_t index) const;
+  /// "time_s, gyro_x, …" or "1..7 (no header row; use 1-based indices)".
+  std::string describe_columns() const;
+};
+
+namespace csv_detail {
 
 class LineSource;
 
@@ -28,4 +46,5 @@ struct SniffedTable {
 /// problem") when the file is empty, UTF-16, binary, or has no data row.
 SniffedTable sniff_layout(LineSource& source, const std::string& path, Delimiter requested);
 
-}  // namespace imunoise::io::csv_detail
+}  // namespace csv_detail
+}  // namespace imunoise::io

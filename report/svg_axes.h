@@ -12,7 +12,7 @@
 
 #include "report/axis_ticks.h"
 #include "report/svg_geometry.h"
-#include "report/svg_plot.h"
+#include "report/plot.h"
 
 namespace imunoise::report::svg_detail {
 

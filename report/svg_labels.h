@@ -13,7 +13,7 @@
 
 #include "report/svg_axes.h"
 #include "report/svg_geometry.h"
-#include "report/svg_plot.h"
+#include "report/plot.h"
 #include "report/svg_series.h"
 
 namespace imunoise::report::svg_detail {

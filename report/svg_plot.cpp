@@ -17,9 +17,6 @@ namespace {
 
 using namespace svg_detail;
 
-constexpr std::array<std::string_view, 8> kPalette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                                      "#E69F00", "#56B4E9", "#000000", "#F0E442"};
-
 void validate(const Plot& plot) {
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     const Series& series = plot.series[s];
@@ -92,11 +89,6 @@ std::size_t total_points(const Plot& plot) {
 }
 
 }  // namespace
-
-std::string_view palette_color(int index) {
-  const int n = static_cast<int>(kPalette.size());
-  return kPalette[static_cast<std::size_t>(((index % n) + n) % n)];
-}
 
 std::string render_svg(const Plot& plot) {
   validate(plot);

@@ -11,7 +11,7 @@
 
 #include "report/svg_axes.h"
 #include "report/svg_geometry.h"
-#include "report/svg_plot.h"
+#include "report/plot.h"
 
 namespace imunoise::report::svg_detail {
 

@@ -24,7 +24,7 @@
 #include "io/noise_model_yaml.h"
 #include "pipeline/drift_run.h"
 #include "tools/commands.h"
-#include "tools/duration.h"
+#include "io/duration_parser.h"
 #include "tools/gm_convention_option.h"
 #include "tools/input_options.h"
 #include "tools/invocation.h"
@@ -81,10 +81,10 @@ pipeline::DriftRunOptions drift_options(const DriftArgs& a) {
   o.location = {a.location[0], a.location[1], a.location[2], a.location_given};
   if (a.heading_deg) o.heading_rad = *a.heading_deg * units::kDeg;
   o.heading_sigma_rad = a.heading_sigma_deg * units::kDeg;
-  o.align_s = parse_duration_s(a.align, "--align");
-  o.navigation_s = parse_duration_s(a.segment, "--segment");
-  o.warmup_s = parse_duration_s(a.warmup, "--warmup", /*allow_zero=*/true);
-  o.output_step_s = parse_duration_s(a.output_step, "--output-step");
+  o.align_s = io::parse_duration_s(a.align, "--align");
+  o.navigation_s = io::parse_duration_s(a.segment, "--segment");
+  o.warmup_s = io::parse_duration_s(a.warmup, "--warmup", /*allow_zero=*/true);
+  o.output_step_s = io::parse_duration_s(a.output_step, "--output-step");
   o.report_times_s.clear();
   for (double t : a.report_times_s)
     if (t <= o.navigation_s) o.report_times_s.push_back(t);

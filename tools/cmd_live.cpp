@@ -29,7 +29,7 @@
 #include "pipeline/live_window.h"
 #include "tools/analysis_options.h"
 #include "tools/commands.h"
-#include "tools/duration.h"
+#include "io/duration_parser.h"
 #include "tools/lcm_bus.h"
 #include "tools/verbosity.h"
 
@@ -85,11 +85,11 @@ void handle_imu(const lcm::ReceiveBuffer* buffer, const std::string&,
 }
 
 void run_live(const LiveArgs& args) {
-  const double window_s = parse_duration_s(args.window, "--window");
-  const double every_s = parse_duration_s(args.every, "--every");
+  const double window_s = io::parse_duration_s(args.window, "--window");
+  const double every_s = io::parse_duration_s(args.every, "--every");
   // 0 = no limit.
   const double max_runtime_s =
-      args.max_runtime.empty() ? 0.0 : parse_duration_s(args.max_runtime, "--max-runtime");
+      args.max_runtime.empty() ? 0.0 : io::parse_duration_s(args.max_runtime, "--max-runtime");
   if (args.max_samples < 16) throw InputError("--max-samples: expected at least 16");
   (void)pipeline::parse_gap_policy(args.analysis.gaps);
   import_fftw_wisdom_option(args.analysis);  // once, for every analysis of the window

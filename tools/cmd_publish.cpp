@@ -23,7 +23,7 @@
 #include "io/result_files.h"
 #include "pipeline/recording.h"
 #include "tools/commands.h"
-#include "tools/duration.h"
+#include "io/duration_parser.h"
 #include "tools/lcm_bus.h"
 #include "tools/verbosity.h"
 
@@ -46,7 +46,7 @@ struct PublishArgs {
 
 void run_publish(const PublishArgs& args) {
   if (args.repeat < 1) throw InputError("--repeat: expected at least 1");
-  const double interval_s = parse_duration_s(args.interval, "--interval", true);
+  const double interval_s = io::parse_duration_s(args.interval, "--interval", true);
   // Read everything before opening the bus: a bad file publishes nothing.
   const models::NoiseModel model = io::load_model_yaml(args.model_path);
   std::vector<std::pair<std::string, analysis::DeviationCurve>> curves;  // axis, curve

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "analysis/deviation.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "analysis/confidence.h"
+#include "analysis/deviation.h"
 #include "analysis/edf.h"
 #include "analysis/tau_grid.h"
 #include "stable32_tables.h"

@@ -32,7 +32,7 @@ imunoise::imu_sample_t message(std::int64_t k, bool increments, bool temperature
   return m;
 }
 
-void expect_same_columns(const ImuSampleColumns& a, const ImuSampleColumns& b) {
+void expect_same_columns(const pipeline::ImuSampleColumns& a, const pipeline::ImuSampleColumns& b) {
   EXPECT_EQ(a.utime_us, b.utime_us);
   EXPECT_EQ(a.increments, b.increments);
   for (std::size_t c = 0; c < 6; ++c) EXPECT_EQ(a.values[c], b.values[c]) << c;
@@ -46,7 +46,7 @@ TEST(ImuSampleMessage, WindowSnapshotEqualsTheLogReadersColumns) {
   for (const bool increments : {false, true}) {
     for (const bool temperature : {false, true}) {
       pipeline::LiveWindow window({3600.0, 1000, 1.0}, imu_sample_fields());
-      ImuSampleColumns reference;
+      pipeline::ImuSampleColumns reference;
       for (std::int64_t k = 0; k < 20; ++k) {
         const imunoise::imu_sample_t m = message(k, increments, temperature);
         const test::LcmBytes bytes = test::lcm_encode(m);

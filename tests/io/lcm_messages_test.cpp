@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "io/atomic_output.h"
-#include "io/imu_samples.h"
+#include "pipeline/imu_samples.h"
 #include "io/lcm_log_writer.h"
 #include "test_support.h"
 
@@ -177,12 +177,12 @@ imunoise::imu_sample_t sample(std::int64_t utime, double g, double a, bool incre
 }
 
 TEST(ImuSamples, IncrementsAreDividedByTheMedianPeriod) {
-  ImuSampleColumns columns;
+  pipeline::ImuSampleColumns columns;
   for (int k = 0; k < 5; ++k) append_imu_sample(sample(1000 + 10'000 * k, 0.5, 2.0, true), columns);
   EXPECT_TRUE(columns.increments);
   EXPECT_EQ(columns.source_fields[1], "delta_angle_rad[1]");
   EXPECT_EQ(columns.source_units[4], "m/s");
-  const pipeline::Recording rec = recording_from_imu_samples(columns, "mem", "IMU");
+  const pipeline::Recording rec = pipeline::recording_from_imu_samples(columns, "mem", "IMU");
   EXPECT_DOUBLE_EQ(rec.sample_period_s, 0.01);
   ASSERT_NE(rec.find_channel("gyro_y"), nullptr);
   EXPECT_DOUBLE_EQ(rec.find_channel("gyro_y")->values[3], 1.5 / 0.01);
@@ -194,7 +194,7 @@ TEST(ImuSamples, IncrementsAreDividedByTheMedianPeriod) {
 }
 
 TEST(ImuSamples, TemperatureOnlyWhenEverySampleHasOne) {
-  ImuSampleColumns all, some;
+  pipeline::ImuSampleColumns all, some;
   for (int k = 0; k < 4; ++k) {
     imunoise::imu_sample_t m = sample(10'000 * k, 0.0, 0.0, false);
     m.has_temperature = true;
@@ -203,20 +203,20 @@ TEST(ImuSamples, TemperatureOnlyWhenEverySampleHasOne) {
     if (k == 2) m.has_temperature = false;
     append_imu_sample(m, some);
   }
-  const pipeline::Recording a = recording_from_imu_samples(all, "mem", "IMU");
+  const pipeline::Recording a = pipeline::recording_from_imu_samples(all, "mem", "IMU");
   ASSERT_NE(a.find_channel("temperature"), nullptr);
   EXPECT_EQ(a.find_channel("temperature")->values, (std::vector<double>{20, 21, 22, 23}));
-  EXPECT_EQ(recording_from_imu_samples(some, "mem", "IMU").find_channel("temperature"), nullptr);
+  EXPECT_EQ(pipeline::recording_from_imu_samples(some, "mem", "IMU").find_channel("temperature"), nullptr);
 }
 
 TEST(ImuSamples, TooFewOrFrozenStampsAreInputErrors) {
-  ImuSampleColumns one;
+  pipeline::ImuSampleColumns one;
   append_imu_sample(sample(5, 0, 0, false), one);
-  EXPECT_THAT(error_of([&] { recording_from_imu_samples(one, "x.lcmlog", "IMU"); }),
+  EXPECT_THAT(error_of([&] { pipeline::recording_from_imu_samples(one, "x.lcmlog", "IMU"); }),
               HasSubstr("too few samples: 1"));
-  ImuSampleColumns frozen;
+  pipeline::ImuSampleColumns frozen;
   for (int k = 0; k < 3; ++k) append_imu_sample(sample(5, 0, 0, false), frozen);
-  EXPECT_THAT(error_of([&] { recording_from_imu_samples(frozen, "x.lcmlog", "IMU"); }),
+  EXPECT_THAT(error_of([&] { pipeline::recording_from_imu_samples(frozen, "x.lcmlog", "IMU"); }),
               HasSubstr("never increase"));
 }
 

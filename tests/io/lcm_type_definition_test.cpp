@@ -786,7 +786,7 @@ TEST(LcmUserType, ScalarFieldsInDegreesAndGWithNanosecondStamps) {
 
   // The exact stamps, through the decoder itself.
   LcmUserImuDecoder decoder(t);
-  ImuSampleColumns columns = decoder.make_columns();
+  pipeline::ImuSampleColumns columns = decoder.make_columns();
   std::string error;
   for (int i = 0; i < 2; ++i)
     ASSERT_TRUE(decoder.append(test::lcm_encode(message(i)), false, columns, error));
@@ -899,7 +899,7 @@ TEST(LcmUserType, ValueOverflowingWhenScaledIsNonFinite) {
   usertest::scalar_imu_t m{};
   m.ax = 1e308;  // finite in g, Inf in m/s²
   LcmUserImuDecoder decoder(t);
-  ImuSampleColumns columns = decoder.make_columns();
+  pipeline::ImuSampleColumns columns = decoder.make_columns();
   std::string error;
   EXPECT_FALSE(decoder.append(test::lcm_encode(m), false, columns, error));
   EXPECT_EQ(error, "non-finite value in ax (Inf) after scaling to SI");
