@@ -160,7 +160,9 @@ PsdReadoffTerm read_term(const Spectrum& s, const Run* run, int slope, double ta
 }  // namespace
 
 double PsdTerms::total() const {
-  double sum = quantization + white_noise + bias_instability + random_walk + ramp;
+  double sum = terms[NoiseTerm::quantization] + terms[NoiseTerm::white_noise] +
+               terms[NoiseTerm::bias_instability] + terms[NoiseTerm::random_walk] +
+               terms[NoiseTerm::ramp];
   for (double g : gauss_markov) sum += g;
   return sum;
 }
@@ -168,11 +170,11 @@ double PsdTerms::total() const {
 PsdTerms model_psd_terms(const NoiseCoefficients& model, double f_hz, double tau0_s) {
   check_model(model, f_hz, tau0_s);
   PsdTerms t;
-  t.quantization = quantization_psd(model.quantization, f_hz, tau0_s);
-  t.white_noise = white_psd(model.white_noise);
-  t.bias_instability = flicker_psd(model.bias_instability, f_hz);
-  t.random_walk = random_walk_psd(model.random_walk, f_hz);
-  t.ramp = ramp_psd(model.ramp, f_hz);
+  t.terms[NoiseTerm::quantization] = quantization_psd(model.quantization, f_hz, tau0_s);
+  t.terms[NoiseTerm::white_noise] = white_psd(model.white_noise);
+  t.terms[NoiseTerm::bias_instability] = flicker_psd(model.bias_instability, f_hz);
+  t.terms[NoiseTerm::random_walk] = random_walk_psd(model.random_walk, f_hz);
+  t.terms[NoiseTerm::ramp] = ramp_psd(model.ramp, f_hz);
   t.gauss_markov.reserve(model.gauss_markov.size());
   for (const GaussMarkov& gm : model.gauss_markov) {
     t.gauss_markov.push_back(gauss_markov_psd(gm, f_hz));
@@ -388,7 +390,7 @@ PsdReadoff psd_readoff(const Spectrum& binned) {
     }
   }
 
-  out.quantization = read_term(binned, longest(plus2, nullptr), 2, tau0);
+  out.terms[NoiseTerm::quantization] = read_term(binned, longest(plus2, nullptr), 2, tau0);
   // White noise cannot show below a visible Gauss–Markov plateau (it would hide it), so
   // with one, only flat runs above the start of its roll-off qualify; flat runs below it
   // are pieces of the same plateau split by noisy slopes.
@@ -396,10 +398,10 @@ PsdReadoff psd_readoff(const Spectrum& binned) {
   for (const Run& r : flat) {
     if (rolloff == nullptr || r.first > rolloff->first) white_runs.push_back(r);
   }
-  out.white_noise = read_term(binned, longest(white_runs, nullptr), 0, tau0);
-  out.bias_instability = read_term(binned, longest(minus1, nullptr), -1, tau0);
-  out.random_walk = read_term(binned, longest(minus2, rolloff), -2, tau0);
-  out.ramp = read_term(binned, longest(minus3, nullptr), -3, tau0);
+  out.terms[NoiseTerm::white_noise] = read_term(binned, longest(white_runs, nullptr), 0, tau0);
+  out.terms[NoiseTerm::bias_instability] = read_term(binned, longest(minus1, nullptr), -1, tau0);
+  out.terms[NoiseTerm::random_walk] = read_term(binned, longest(minus2, rolloff), -2, tau0);
+  out.terms[NoiseTerm::ramp] = read_term(binned, longest(minus3, nullptr), -3, tau0);
   return out;
 }
 

@@ -19,11 +19,9 @@ namespace imunoise::analysis {
 
 /// The terms of S₁(f) separately, for plotting [unit²/Hz].
 struct PsdTerms {
-  double quantization = 0.0;         ///< 2(2πf)²τ0Q² for f ≤ f_s/2, else 0
-  double white_noise = 0.0;          ///< 2N²
-  double bias_instability = 0.0;     ///< B²/(πf) (no low-frequency cut-off f₀)
-  double random_walk = 0.0;          ///< K²/(2π²f²)
-  double ramp = 0.0;                 ///< 2R²/(2πf)³
+  /// Per term: Q 2(2πf)²τ0Q² for f ≤ f_s/2, else 0; N 2N²; B B²/(πf) (no low-frequency
+  /// cut-off f₀); K K²/(2π²f²); R 2R²/(2πf)³.
+  PerTerm<double> terms{};
   std::vector<double> gauss_markov;  ///< 4σ²T_c/(1 + (2πfT_c)²), one per model term
   double total() const;              ///< sum of all terms
 };
@@ -92,14 +90,13 @@ struct PsdReadoffTerm {
 
 /// Coefficients read off a log-binned spectrum.
 struct PsdReadoff {
-  PsdReadoffTerm quantization;      ///< Q [rad | m/s], slope +2: Q = √(S₁/(2τ0))/(2πf)
-  PsdReadoffTerm white_noise;       ///< N [rad/√s | m/s/√s], slope 0: N = √(S₁/2)
-  PsdReadoffTerm bias_instability;  ///< B [rad/s | m/s²], slope −1: B = √(πfS₁)
-  PsdReadoffTerm random_walk;       ///< K [rad/s^{3/2} | m/s^{5/2}], slope −2: K = πf√(2S₁)
-  PsdReadoffTerm ramp;              ///< R [rad/s² | m/s³], slope −3: R = √(S₁(2πf)³/2)
-  PsdReadoffTerm gm_plateau;        ///< plateau S₁ = 4σ²T_c of a Gauss–Markov [unit²/Hz]
-  PsdReadoffTerm gm_corner_hz;      ///< corner f_c = 1/(2πT_c) where S₁ falls to half [Hz];
-                                    ///< its region is the −2 roll-off run
+  /// Per term: Q [rad | m/s], slope +2: Q = √(S₁/(2τ0))/(2πf); N [rad/√s | m/s/√s], slope 0:
+  /// N = √(S₁/2); B [rad/s | m/s²], slope −1: B = √(πfS₁); K [rad/s^{3/2} | m/s^{5/2}],
+  /// slope −2: K = πf√(2S₁); R [rad/s² | m/s³], slope −3: R = √(S₁(2πf)³/2).
+  PerTerm<PsdReadoffTerm> terms;
+  PsdReadoffTerm gm_plateau;    ///< plateau S₁ = 4σ²T_c of a Gauss–Markov [unit²/Hz]
+  PsdReadoffTerm gm_corner_hz;  ///< corner f_c = 1/(2πT_c) where S₁ falls to half [Hz];
+                                ///< its region is the −2 roll-off run
 };
 
 /// Slope-region read-off of a log-binned spectrum.

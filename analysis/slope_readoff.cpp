@@ -89,11 +89,11 @@ SlopeReadoff slope_readoff(std::span<const double> tau_s, std::span<const double
         (std::log(adev[hi]) - std::log(adev[lo])) / (std::log(tau_s[hi]) - std::log(tau_s[lo]));
   }
   SlopeReadoff out;
-  out.quantization = read_term(tau_s, adev, slope, -1.0, std::sqrt(3.0));
-  out.white_noise = read_term(tau_s, adev, slope, -0.5, 1.0);
-  out.bias_instability = read_term(tau_s, adev, slope, 0.0, 0.0);
-  out.random_walk = read_term(tau_s, adev, slope, 0.5, 3.0);
-  out.ramp = read_term(tau_s, adev, slope, 1.0, std::sqrt(2.0));
+  out[NoiseTerm::quantization] = read_term(tau_s, adev, slope, -1.0, std::sqrt(3.0));
+  out[NoiseTerm::white_noise] = read_term(tau_s, adev, slope, -0.5, 1.0);
+  out[NoiseTerm::bias_instability] = read_term(tau_s, adev, slope, 0.0, 0.0);
+  out[NoiseTerm::random_walk] = read_term(tau_s, adev, slope, 0.5, 3.0);
+  out[NoiseTerm::ramp] = read_term(tau_s, adev, slope, 1.0, std::sqrt(2.0));
   return out;
 }
 

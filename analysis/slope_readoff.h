@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <span>
 
+#include "common/noise_term.h"
+
 namespace imunoise::analysis {
 
 /// Read-off of one term.
@@ -18,10 +20,8 @@ struct SlopeReadoffTerm {
   std::size_t points = 0;   ///< number of curve points in the region
 };
 
-/// Read-off of all five terms.
-struct SlopeReadoff {
-  SlopeReadoffTerm quantization, white_noise, bias_instability, random_walk, ramp;
-};
+/// Read-off of all five terms, per NoiseTerm.
+using SlopeReadoff = PerTerm<SlopeReadoffTerm>;
 
 /// Tolerance on the local log-log slope for a point to belong to a term's region. For a curve
 /// made of a term of slope s_i plus one of a neighbouring slope s_i ± 1/2, the local slope is

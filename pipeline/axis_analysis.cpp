@@ -328,13 +328,10 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
     return r.found ? r.value : 0.0;
   };
   const auto psd_value = [](const analysis::PsdReadoffTerm& r) { return r.found ? r.value : 0.0; };
-  model.readoff.slope = {slope_value(out.slope.quantization), slope_value(out.slope.white_noise),
-                         slope_value(out.slope.bias_instability),
-                         slope_value(out.slope.random_walk), slope_value(out.slope.ramp)};
-  model.readoff.psd = {psd_value(out.psd_readoff.quantization),
-                       psd_value(out.psd_readoff.white_noise),
-                       psd_value(out.psd_readoff.bias_instability),
-                       psd_value(out.psd_readoff.random_walk), psd_value(out.psd_readoff.ramp)};
+  for (NoiseTerm term : kNoiseTerms) {
+    model.readoff.slope[term] = slope_value(out.slope[term]);
+    model.readoff.psd[term] = psd_value(out.psd_readoff.terms[term]);
+  }
   for (std::size_t j = 0; j < out.fit.coefficients.gauss_markov.size(); ++j) {
     models::GaussMarkovEstimate gm;
     gm.value = out.fit.coefficients.gauss_markov[j];

@@ -449,11 +449,11 @@ TEST(PsdModel, TermsMatchTheTheoryTableAndSumToTheTotal) {
   const double f = 3.0, tau0 = 0.01;
   const PsdTerms t = model_psd_terms(model, f, tau0);
   const double w = 2.0 * kPi * f;
-  EXPECT_DOUBLE_EQ(t.quantization, 2.0 * w * w * tau0 * 1e-8);
-  EXPECT_DOUBLE_EQ(t.white_noise, 2.0 * 4e-6);
-  EXPECT_DOUBLE_EQ(t.bias_instability, 25e-8 / (kPi * f));
-  EXPECT_DOUBLE_EQ(t.random_walk, 9e-10 / (2.0 * kPi * kPi * f * f));
-  EXPECT_DOUBLE_EQ(t.ramp, 2.0 * 1e-14 / (w * w * w));
+  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::quantization], 2.0 * w * w * tau0 * 1e-8);
+  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::white_noise], 2.0 * 4e-6);
+  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::bias_instability], 25e-8 / (kPi * f));
+  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::random_walk], 9e-10 / (2.0 * kPi * kPi * f * f));
+  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::ramp], 2.0 * 1e-14 / (w * w * w));
   ASSERT_EQ(t.gauss_markov.size(), 1u);
   EXPECT_DOUBLE_EQ(t.gauss_markov[0], 4.0 * 1e-6 * 10.0 / (1.0 + 100.0 * w * w));
   EXPECT_DOUBLE_EQ(model_psd_one_sided(model, f, tau0), t.total());
@@ -472,10 +472,10 @@ TEST(PsdReadoff, WhiteNoiseGivesN) {
   model.white_noise = arw;
   const auto x = simulate(model, rate_hz, std::size_t{1} << 20, 11);
   const PsdReadoff r = psd_readoff(log_bin(welch_psd(x, rate_hz), 10));
-  ASSERT_TRUE(r.white_noise.found);
-  EXPECT_NEAR(r.white_noise.value / arw, 1.0, 0.02);
-  EXPECT_GE(r.white_noise.bins, 20u);
-  EXPECT_GT(r.white_noise.f_high_hz, 40.0);
+  ASSERT_TRUE(r.terms[NoiseTerm::white_noise].found);
+  EXPECT_NEAR(r.terms[NoiseTerm::white_noise].value / arw, 1.0, 0.02);
+  EXPECT_GE(r.terms[NoiseTerm::white_noise].bins, 20u);
+  EXPECT_GT(r.terms[NoiseTerm::white_noise].f_high_hz, 40.0);
   EXPECT_FALSE(r.gm_plateau.found);
 }
 
@@ -497,9 +497,9 @@ TEST(PsdReadoff, RandomWalkGivesK) {
   WelchOptions options;
   options.detrend = Detrend::linear;
   const PsdReadoff r = psd_readoff(log_bin(welch_psd(x, rate_hz, options), 10));
-  ASSERT_TRUE(r.random_walk.found);
-  EXPECT_NEAR(r.random_walk.value / k, 1.0, 0.10);
-  EXPECT_GE(r.random_walk.bins, 10u);
+  ASSERT_TRUE(r.terms[NoiseTerm::random_walk].found);
+  EXPECT_NEAR(r.terms[NoiseTerm::random_walk].value / k, 1.0, 0.10);
+  EXPECT_GE(r.terms[NoiseTerm::random_walk].bins, 10u);
 }
 
 TEST(PsdReadoff, FlickerGivesB) {
@@ -512,9 +512,9 @@ TEST(PsdReadoff, FlickerGivesB) {
   model.bias_instability = b;
   const auto x = simulate(model, rate_hz, std::size_t{1} << 20, 13);
   const PsdReadoff r = psd_readoff(log_bin(welch_psd(x, rate_hz), 10));
-  ASSERT_TRUE(r.bias_instability.found);
-  EXPECT_NEAR(r.bias_instability.value / b, 1.0, 0.10);
-  EXPECT_GE(r.bias_instability.bins, 10u);
+  ASSERT_TRUE(r.terms[NoiseTerm::bias_instability].found);
+  EXPECT_NEAR(r.terms[NoiseTerm::bias_instability].value / b, 1.0, 0.10);
+  EXPECT_GE(r.terms[NoiseTerm::bias_instability].bins, 10u);
 }
 
 TEST(PsdReadoff, GaussMarkovPlateauAndCorner) {
@@ -533,7 +533,7 @@ TEST(PsdReadoff, GaussMarkovPlateauAndCorner) {
   // plateau bins have ν ≈ 50–600, i.e. ±6–20 % each). 10 %.
   EXPECT_NEAR(r.gm_plateau.value / (4.0 * sigma * sigma * tc), 1.0, 0.10);
   EXPECT_NEAR(r.gm_corner_hz.value * 2.0 * kPi * tc, 1.0, 0.10);
-  EXPECT_FALSE(r.white_noise.found);
+  EXPECT_FALSE(r.terms[NoiseTerm::white_noise].found);
 }
 
 // ---------------------------------------------------------------------------------------------

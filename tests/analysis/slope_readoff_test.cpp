@@ -30,21 +30,7 @@ std::vector<double> adev_of(const NoiseCoefficients& model, const std::vector<do
   return adev;
 }
 
-const SlopeReadoffTerm& term_of(const SlopeReadoff& r, NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::quantization:
-      return r.quantization;
-    case NoiseTerm::white_noise:
-      return r.white_noise;
-    case NoiseTerm::bias_instability:
-      return r.bias_instability;
-    case NoiseTerm::random_walk:
-      return r.random_walk;
-    case NoiseTerm::ramp:
-      break;
-  }
-  return r.ramp;
-}
+const SlopeReadoffTerm& term_of(const SlopeReadoff& r, NoiseTerm term) { return r[term]; }
 
 TEST(SlopeReadoff, RecoversEachSingleTermExactly) {
   const std::vector<double> tau = log_grid();
@@ -95,24 +81,24 @@ TEST(SlopeReadoff, FloorReadoffOverestimatesBiasInstabilityInTheWorkedExample) {
   model.random_walk = 6.80678e-6;
   const std::vector<double> tau = log_grid();
   const SlopeReadoff r = slope_readoff(tau, adev_of(model, tau));
-  ASSERT_TRUE(r.bias_instability.found);
+  ASSERT_TRUE(r[NoiseTerm::bias_instability].found);
   const double floor_factor = std::sqrt(2.0 * std::log(2.0) / units::kPi);
-  const double floor_deg = r.bias_instability.value * floor_factor / units::kDegPerS;
+  const double floor_deg = r[NoiseTerm::bias_instability].value * floor_factor / units::kDegPerS;
   EXPECT_NEAR(floor_deg, 0.00496, 0.000005);
   EXPECT_NEAR(model.bias_instability * floor_factor / units::kDegPerS, 0.00465, 0.000005);
-  EXPECT_GT(r.bias_instability.value / model.bias_instability, 1.06);  // +6.7 % here
+  EXPECT_GT(r[NoiseTerm::bias_instability].value / model.bias_instability, 1.06);  // +6.7 % here
   // The zero-slope region brackets τ_min = 29.6 s.
-  EXPECT_LT(r.bias_instability.tau_low_s, 29.6);
-  EXPECT_GT(r.bias_instability.tau_high_s, 29.6);
+  EXPECT_LT(r[NoiseTerm::bias_instability].tau_low_s, 29.6);
+  EXPECT_GT(r[NoiseTerm::bias_instability].tau_high_s, 29.6);
   // N and K are found, each lifted by the floor in its own region (§4.2 inconsistency).
-  ASSERT_TRUE(r.white_noise.found);
-  ASSERT_TRUE(r.random_walk.found);
-  EXPECT_GT(r.white_noise.value, model.white_noise);
-  EXPECT_LT(r.white_noise.value, 1.1 * model.white_noise);
-  EXPECT_GT(r.random_walk.value, model.random_walk);
-  EXPECT_LT(r.random_walk.value, 1.3 * model.random_walk);
-  EXPECT_FALSE(r.quantization.found);
-  EXPECT_FALSE(r.ramp.found);
+  ASSERT_TRUE(r[NoiseTerm::white_noise].found);
+  ASSERT_TRUE(r[NoiseTerm::random_walk].found);
+  EXPECT_GT(r[NoiseTerm::white_noise].value, model.white_noise);
+  EXPECT_LT(r[NoiseTerm::white_noise].value, 1.1 * model.white_noise);
+  EXPECT_GT(r[NoiseTerm::random_walk].value, model.random_walk);
+  EXPECT_LT(r[NoiseTerm::random_walk].value, 1.3 * model.random_walk);
+  EXPECT_FALSE(r[NoiseTerm::quantization].found);
+  EXPECT_FALSE(r[NoiseTerm::ramp].found);
 }
 
 TEST(SlopeReadoff, RejectsBadInput) {
