@@ -6,10 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include "analysis/noise_terms.h"
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "common/sampling_gap.h"
 
 namespace imunoise::report {
 
@@ -449,10 +451,11 @@ Figure gaps_figure(const std::vector<double>& start_s, const std::vector<double>
   gaps.line = Line::none;
   gaps.marker = Marker::cross;
   add_series(f, std::move(gaps), "gap");
+  const std::string factor = shortest_number_text(kGapFactor);
   f.caption = gap_count == 0
-                  ? "No interval exceeded the gap limit (1.5 × the median interval)."
-                  : "Each gap (an interval longer than 1.5 × the median) by when it started and "
-                    "how long it lasted" +
+                  ? "No interval exceeded the gap limit (" + factor + " × the median interval)."
+                  : "Each gap (an interval longer than " + factor +
+                        " × the median) by when it started and how long it lasted" +
                         std::string(static_cast<std::size_t>(gap_count) > start_s.size()
                                         ? "; only the first " + std::to_string(start_s.size()) +
                                               " of " + std::to_string(gap_count) + " are listed."

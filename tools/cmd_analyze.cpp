@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
+#include <array>
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -28,7 +28,6 @@
 #include "analysis/noise_terms.h"
 #include "analysis/psd_model.h"
 #include "common/errors.h"
-#include "common/number_text.h"
 #include "common/units.h"
 #include "io/allan_csv.h"
 #include "io/atomic_output.h"
@@ -37,10 +36,11 @@
 #include "io/psd_csv.h"
 #include "io/sampling_report.h"
 #include "io/simulation_model.h"
-#include "models/datasheet_units.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
 #include "pipeline/gap_policy.h"
+#include "report/summary_text.h"
+#include "report/write_report.h"
 #include "tools/analysis_options.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
@@ -48,14 +48,11 @@
 #include "tools/lcm_bus.h"
 #include "tools/progress.h"
 #include "tools/recording_input.h"
-#include "tools/report_job.h"
 #include "tools/verbosity.h"
 
 namespace imunoise::tools {
 
 namespace {
-
-using pipeline::kImuChannelNames;
 
 struct AnalyzeArgs {
   std::string file;
@@ -71,65 +68,6 @@ struct AnalyzeArgs {
   std::string model_channel = "NOISE_MODEL";
   std::string curves_channel = "ALLAN_CURVE";
 };
-
-/// "1.234e-02 [1.1e-02, 1.4e-02]" or "not identified (< 3e-4)".
-std::string estimate_text(const models::Estimate& e, const models::DatasheetUnit& unit) {
-  if (!e.identified) {
-    if (e.ci_high > 0.0) return "- (< " + significant_number_text(e.ci_high * unit.factor, 2) + ")";
-    return "-";
-  }
-  return significant_number_text(e.value * unit.factor, 4) + " [" +
-         significant_number_text(e.ci_low * unit.factor, 3) + ", " +
-         significant_number_text(e.ci_high * unit.factor, 3) + "]";
-}
-
-void print_summary(const models::NoiseModel& model,
-                   const std::optional<std::array<NoiseCoefficients, 6>>& truth) {
-  std::cout << "imunoise analyze: " << model.source << " — " << model.samples << " samples at "
-            << significant_number_text(model.sample_rate_hz, 6) << " Hz ("
-            << significant_number_text(model.duration_s / 3600.0, 4) << " h); coefficients with "
-            << significant_number_text(100.0 * model.confidence, 3)
-            << " % intervals, '-' = not identified (upper bound);\n"
-            << "ieee952 = the graphical slope read-off of the OADEV curve, for traceability\n";
-  for (bool gyro : {true, false}) {
-    std::cout << "\n" << (gyro ? "gyro" : "accel") << "\n";
-    for (NoiseTerm term : kNoiseTerms) {
-      const models::DatasheetUnit unit = models::datasheet_unit(term, gyro);
-      std::cout << "  " << term_name(term) << " [" << unit.ascii << "]\n";
-      for (std::size_t i = 0; i < model.axes.size(); ++i) {
-        const models::AxisModel& axis = model.axes[i];
-        if (axis.gyro != gyro) continue;
-        const models::Estimate& e = axis.terms[term];
-        std::cout << "    " << axis.name << ": " << estimate_text(e, unit);
-        const double slope = axis.readoff.slope[term];
-        if (slope > 0.0)
-          std::cout << "   ieee952 " << significant_number_text(slope * unit.factor, 4);
-        if (truth) {
-          const std::size_t channel = static_cast<std::size_t>(
-              std::find(kImuChannelNames.begin(), kImuChannelNames.end(), axis.name) -
-              kImuChannelNames.begin());
-          if (channel < 6) {
-            const double true_value = coefficient((*truth)[channel], term);
-            const bool inside = true_value >= e.ci_low && true_value <= e.ci_high;
-            std::cout << "   true " << significant_number_text(true_value * unit.factor, 4)
-                      << (inside ? "  (inside)" : "  (OUTSIDE)");
-          }
-        }
-        std::cout << "\n";
-      }
-    }
-  }
-  for (const models::AxisModel& axis : model.axes) {
-    if (axis.psd_check_pass && !*axis.psd_check_pass) {
-      std::cout << "\nPSD cross-check FAILED for " << axis.name << ": " << axis.psd_check_note
-                << "\n";
-    }
-  }
-  if (!model.data_quality.empty()) {
-    std::cout << "\ndata quality:\n";
-    for (const std::string& line : model.data_quality) std::cout << "  - " << line << "\n";
-  }
-}
 
 /// TIMES gets the wall time of reading, the analysis, the output files and the report (the
 /// caller adds what follows: the summary and publishing, as "outputs").
@@ -181,9 +119,9 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
       io::sampling_report_to_json(recording.report, args.file).dump(2) + "\n");
   write_command_file(dir.string());
   times.mark("outputs");
-  const ReportOutput report = write_report(dir.string());
+  const report::ReportOutput report = report::write_report(dir.string());
   times.mark("report");
-  print_summary(model, truth);
+  std::cout << report::summary_text(model, truth);
   std::cout << "\nwrote " << (dir / "model.yaml").string()
             << ", allan.csv, psd.csv, sampling_report.json, plots/\nreport: " << report.html_path
             << "\n";

@@ -23,6 +23,7 @@
 #include "io/drift_files.h"
 #include "io/noise_model_yaml.h"
 #include "pipeline/drift_run.h"
+#include "report/write_report.h"
 #include "tools/commands.h"
 #include "io/duration_parser.h"
 #include "tools/gm_convention_option.h"
@@ -30,7 +31,6 @@
 #include "tools/invocation.h"
 #include "tools/progress.h"
 #include "tools/recording_input.h"
-#include "tools/report_job.h"
 #include "tools/verbosity.h"
 
 namespace imunoise::tools {
@@ -171,7 +171,7 @@ void run_drift(const DriftArgs& a, StageTimes& times) {
 
   print_drift_summary(result.summary);
   write_command_file(dir.string());
-  const ReportOutput report = write_report(dir.string());
+  const report::ReportOutput report = report::write_report(dir.string());
   std::cout << "\nwrote " << (dir / "drift_segments.csv").string()
             << ", drift_envelope.csv, drift_summary.json, plots/\nreport: " << report.html_path
             << "\n";

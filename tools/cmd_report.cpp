@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
+#include "report/write_report.h"
 #include "tools/commands.h"
-#include "tools/report_job.h"
 #include "tools/verbosity.h"
 
 namespace imunoise::tools {
@@ -36,7 +36,7 @@ void register_report_command(CLI::App& app) {
       "  imunoise drift rec.csv --model out/model.yaml -o out/drift\n"
       "  imunoise report out        # out/report.html now has the drift section too");
   cmd->callback([args] {
-    const ReportOutput out = write_report(args->dir);
+    const report::ReportOutput out = report::write_report(args->dir);
     if (!args->verbosity.quiet) {
       std::cout << "wrote " << out.html_path << " (" << out.figures << " figures)\n";
     }

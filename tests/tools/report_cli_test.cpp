@@ -1,5 +1,5 @@
 /// @file
-/// @brief End-to-end tests of the report (tools/report_job.cpp, `imunoise report`): analyze and
+/// @brief End-to-end tests of the report (report/write_report.cpp, `imunoise report`): analyze and
 /// drift write DIR/report.html with the figures, the CSV behind each, the coefficient table,
 /// findings, exports and commands; every embedded SVG is well-formed XML; the plotted data
 /// equal the analysis outputs; a directory without results is a clear error with no output.
