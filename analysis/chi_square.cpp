@@ -230,8 +230,9 @@ void check_quantile_args(const char* where, double prob, double dof) {
   IMUNOISE_CHECK(
       std::isfinite(dof) && dof > 0.0, AnalysisError,
       std::string(where) + ": dof must be finite and > 0 (got " + std::to_string(dof) + ")");
-  IMUNOISE_CHECK(
-      prob > 0.0 && prob < 1.0, AnalysisError,
+  // The probability is the caller's choice (a confidence level the CLI validated), not data.
+  IMUNOISE_EXPECT(
+      prob > 0.0 && prob < 1.0,
       std::string(where) + ": probability must be in (0, 1) (got " + std::to_string(prob) + ")");
 }
 

@@ -36,14 +36,15 @@ double chi_square_sf(double x, double dof);
 /// true quantile is below the smallest positive double (tiny dof with small probability).
 /// @param[in] probability in (0, 1)
 /// @param[in] dof degrees of freedom, > 0
-/// @throws AnalysisError on arguments outside those ranges.
+/// @throws AnalysisError when dof is outside its range (an EDF the data gave), ContractViolation
+///   when the probability is.
 double chi_square_quantile(double probability, double dof);
 
 /// Inverse of chi_square_sf(): the x with Pr(χ²_dof > x) = tail. Use it for upper
 /// quantiles close to 1, where 1 − tail would lose digits.
 /// @param[in] tail upper-tail probability in (0, 1)
 /// @param[in] dof degrees of freedom, > 0
-/// @throws AnalysisError on arguments outside those ranges.
+/// @throws as chi_square_quantile().
 double chi_square_upper_quantile(double tail, double dof);
 
 /// @}

@@ -17,8 +17,8 @@ DeviationInterval deviation_interval(double deviation, double edf, double confid
   IMUNOISE_CHECK(
       std::isfinite(edf) && edf > 0.0, AnalysisError,
       "deviation_interval: edf must be finite and > 0 (got " + std::to_string(edf) + ")");
-  IMUNOISE_CHECK(
-      confidence > 0.0 && confidence < 1.0, AnalysisError,
+  IMUNOISE_EXPECT(
+      confidence > 0.0 && confidence < 1.0,
       "deviation_interval: confidence must be in (0, 1) (got " + std::to_string(confidence) + ")");
   const double tail = 0.5 * (1.0 - confidence);  // probability outside each bound
   // The small chi-square quantile bounds σ² from above and the large one from below.

@@ -17,7 +17,8 @@ struct DeviationInterval {
 /// @param[in] deviation  estimated deviation σ̂ ≥ 0 (any unit)
 /// @param[in] edf        equivalent degrees of freedom ν > 0 (non-integer allowed)
 /// @param[in] confidence two-sided coverage in (0, 1), e.g. 0.683 for "1 sigma"
-/// @throws AnalysisError on arguments outside those ranges.
+/// @throws AnalysisError when the deviation or the EDF (numbers the data gave) is outside its
+///   range, ContractViolation when the confidence (the caller's, validated by the CLI) is.
 DeviationInterval deviation_interval(double deviation, double edf, double confidence);
 
 }  // namespace imunoise::analysis

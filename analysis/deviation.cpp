@@ -128,10 +128,11 @@ double total_sum(const double* x, std::int64_t M, std::int64_t m) {
 
 namespace {
 
-/// The number of terms of TYPE's estimator at factor M on N_PHASE phase samples; an
-/// AnalysisError when m < 1 or there is no term (the checks of every single-τ entry point).
+/// The number of terms of TYPE's estimator at factor M on N_PHASE phase samples; a
+/// ContractViolation when m < 1 (the tau grids give m >= 1), an AnalysisError when there is no
+/// term (the checks of every single-τ entry point).
 std::int64_t checked_term_count(DeviationType type, std::int64_t n_phase, std::int64_t m) {
-  IMUNOISE_CHECK(m >= 1, AnalysisError, "averaging factor must be >= 1, got " + std::to_string(m));
+  IMUNOISE_EXPECT(m >= 1, "averaging factor must be >= 1, got " + std::to_string(m));
   const std::int64_t n = estimator_term_count(type, n_phase, m);
   IMUNOISE_CHECK(n >= 1, AnalysisError,
                  "too few samples for " + std::string(to_string(type)) +
@@ -181,9 +182,8 @@ std::vector<VarianceEstimate> overlapping_variances(DeviationType type,
                                                     std::span<const std::int64_t> m_values,
                                                     double tau0_s) {
   const int order = overlapping_order(type);
-  IMUNOISE_CHECK(order != 0, AnalysisError,
-                 "overlapping_variances: " + std::string(to_string(type)) +
-                     " is not an overlapping Allan or Hadamard variance");
+  IMUNOISE_EXPECT(order != 0, "overlapping_variances: " + std::string(to_string(type)) +
+                                  " is not an overlapping Allan or Hadamard variance");
   detail::check_sample_period(tau0_s);
   const auto M = static_cast<std::int64_t>(phase.size());
   std::vector<VarianceEstimate> out(m_values.size());
@@ -215,7 +215,7 @@ std::vector<double> detrended_phase(std::span<const double> phase) {
 VarianceEstimate allan_family_variance(DeviationType type, std::span<const double> phase,
                                        std::int64_t m, double tau0_s) {
   const auto M = static_cast<std::int64_t>(phase.size());
-  IMUNOISE_CHECK(m >= 1, AnalysisError, "averaging factor must be >= 1, got " + std::to_string(m));
+  IMUNOISE_EXPECT(m >= 1, "averaging factor must be >= 1, got " + std::to_string(m));
   detail::check_sample_period(tau0_s);
   const std::int64_t n = checked_term_count(type, M, m);
   const double* x = phase.data();
@@ -399,13 +399,14 @@ unsigned curve_threads(unsigned requested, std::size_t count, std::int64_t n_pha
                                          static_cast<unsigned>(std::max<std::size_t>(count, 1))));
 }
 
-/// Throws unless every factor of AVERAGING_FACTORS is usable for TYPE on N_PHASE samples
-/// (WHERE: how the record is described in the message) and the confidence is in (0, 1).
+/// Throws AnalysisError unless every factor of AVERAGING_FACTORS is usable for TYPE on N_PHASE
+/// samples (WHERE: how the record is described in the message), ContractViolation unless the
+/// confidence is in (0, 1).
 void check_curve_request(DeviationType type, std::int64_t n_phase,
                          std::span<const std::int64_t> averaging_factors, double confidence,
                          const std::string& where) {
-  IMUNOISE_CHECK(confidence > 0.0 && confidence < 1.0, InputError,
-                 "confidence must be in (0, 1), got " + std::to_string(confidence));
+  IMUNOISE_EXPECT(confidence > 0.0 && confidence < 1.0,
+                  "confidence must be in (0, 1), got " + std::to_string(confidence));
   const std::int64_t max_m = max_averaging_factor(type, n_phase);
   for (std::int64_t m : averaging_factors) {
     IMUNOISE_CHECK(m >= 1 && m <= max_m, AnalysisError,
@@ -513,7 +514,7 @@ double edf_for(DeviationType type, int alpha, std::int64_t m, std::int64_t n_pha
     case DeviationType::theo1:
       return theo1_edf(alpha, m, n_phase);
   }
-  throw AnalysisError("edf_for: unknown deviation type");
+  throw ContractViolation("edf_for: unknown deviation type");
 }
 
 double curve_edf(const DeviationCurve& curve, int alpha, std::int64_t m) {
@@ -533,11 +534,11 @@ namespace {
 std::size_t check_pooled_request(std::span<const std::span<const double>> phases, double tau0_s,
                                  std::span<const std::int64_t> averaging_factors,
                                  const DeviationOptions& options) {
-  IMUNOISE_CHECK(is_poolable(options.type), InputError,
-                 std::string(to_string(options.type)) +
-                     " cannot be pooled over pieces (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV can)");
-  IMUNOISE_CHECK(options.confidence > 0.0 && options.confidence < 1.0, InputError,
-                 "confidence must be in (0, 1), got " + std::to_string(options.confidence));
+  IMUNOISE_EXPECT(is_poolable(options.type),
+                  std::string(to_string(options.type)) +
+                      " cannot be pooled over pieces (ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV can)");
+  IMUNOISE_EXPECT(options.confidence > 0.0 && options.confidence < 1.0,
+                  "confidence must be in (0, 1), got " + std::to_string(options.confidence));
   detail::check_sample_period(tau0_s);
   std::size_t longest = 0;
   for (std::size_t k = 0; k < phases.size(); ++k) {
@@ -645,7 +646,7 @@ DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>>
                                         double tau0_s,
                                         std::span<const std::int64_t> averaging_factors,
                                         const DeviationOptions& options) {
-  IMUNOISE_CHECK(!phases.empty(), InputError, "pooled deviation: no pieces");
+  IMUNOISE_EXPECT(!phases.empty(), "pooled deviation: no pieces");
   if (phases.size() == 1) {
     return compute_deviation(phases.front(), tau0_s, averaging_factors, options);
   }
@@ -664,7 +665,7 @@ AllanHadamardCurves compute_pooled_allan_hadamard(std::span<const std::span<cons
                                                   std::span<const std::int64_t> oadev_factors,
                                                   std::span<const std::int64_t> ohdev_factors,
                                                   const DeviationOptions& options) {
-  IMUNOISE_CHECK(!phases.empty(), InputError, "pooled deviation: no pieces");
+  IMUNOISE_EXPECT(!phases.empty(), "pooled deviation: no pieces");
   DeviationOptions oadev = options;
   oadev.type = DeviationType::oadev;
   DeviationOptions ohdev = options;

@@ -31,7 +31,8 @@ std::vector<double> detrended_phase(std::span<const double> phase);
 /// @}
 
 /// One statistic at averaging factor m (τ = m·τ0) from M phase samples. Throws
-/// imunoise::AnalysisError when m < 1 or the record is too short for a single term.
+/// imunoise::AnalysisError when the record is too short for a single term, ContractViolation
+/// when m < 1 or τ0 ≤ 0.
 /// For TDEV the value is the time variance (phase unit²).
 VarianceEstimate allan_family_variance(DeviationType type, std::span<const double> phase,
                                        std::int64_t m, double tau0_s);
@@ -39,7 +40,7 @@ VarianceEstimate allan_family_variance(DeviationType type, std::span<const doubl
 /// OAVAR (TYPE oadev) or OHVAR (ohdev) at every factor of M_VALUES, the small factors sharing
 /// cache-resident passes and the large ones a pass per group (analysis/difference_sums.h),
 /// on the calling thread; each value equals allan_family_variance at that factor bit for bit.
-/// Throws AnalysisError for another TYPE or a factor without a term.
+/// Throws AnalysisError for a factor without a term, ContractViolation for another TYPE.
 std::vector<VarianceEstimate> overlapping_variances(DeviationType type,
                                                     std::span<const double> phase,
                                                     std::span<const std::int64_t> m_values,
@@ -60,7 +61,7 @@ struct DeviationPoint {
 /// Options of compute_deviation().
 struct DeviationOptions {
   DeviationType type = DeviationType::oadev;
-  double confidence = 0.683;  ///< two-sided confidence level of [ci_low, ci_high]
+  double confidence = 0.683;  ///< two-sided confidence level of [ci_low, ci_high], in (0, 1)
   std::optional<int> alpha;   ///< force the noise type (else identified per τ, §3.4)
   unsigned threads = 0;       ///< worker threads across τ (0 = all cores)
   /// MTOTDEV, TTOTDEV, HTOTDEV, Thêo1: apply the SP 1065 bias removal for the per-τ alpha
@@ -100,8 +101,8 @@ bool is_poolable(DeviationType type);
 /// Riley at the piece's M_k) and the interval follows from it as for one record (§3.1).
 /// The noise type α per τ is options.alpha, else identified on the longest piece (§3.4).
 /// Each m must satisfy 1 ≤ m ≤ max_averaging_factor(type, longest M_k). One piece gives
-/// exactly compute_deviation(). Throws InputError for a type that cannot be pooled or no
-/// pieces, AnalysisError for an m out of range.
+/// exactly compute_deviation(). Throws ContractViolation for a type that cannot be pooled or
+/// no pieces, AnalysisError for an m out of range.
 DeviationCurve compute_pooled_deviation(std::span<const std::span<const double>> phases,
                                         double tau0_s,
                                         std::span<const std::int64_t> averaging_factors,

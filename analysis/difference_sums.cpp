@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <stdexcept>
 #include <vector>
 
 #include "analysis/kernel_support.h"
+#include "common/errors.h"
 
 // The kernels are compiled three times on x86-64 GCC/clang: for the baseline ISA, x86-64-v3
 // (AVX2 + FMA) and x86-64-v4 (AVX-512), picked at load time by the CPU. On one machine every
@@ -192,11 +192,11 @@ void for_each_pass(const std::vector<std::int64_t>& factors, int span_order, std
 
 void overlapping_difference_sums(std::span<const double> x, int order,
                                  std::span<const std::int64_t> m_values, std::span<double> sums) {
-  if (order != 2 && order != 3) throw std::invalid_argument("difference order must be 2 or 3");
-  if (sums.size() != m_values.size()) throw std::invalid_argument("one sum per factor");
+  IMUNOISE_EXPECT(order == 2 || order == 3, "difference order must be 2 or 3");
+  IMUNOISE_EXPECT(sums.size() == m_values.size(), "one sum per factor");
   const auto M = static_cast<std::int64_t>(x.size());
   for (std::int64_t m : m_values) {
-    if (m < 1 || M - order * m < 1) throw std::invalid_argument("factor without a term");
+    IMUNOISE_EXPECT(m >= 1 && M - order * m >= 1, "factor without a term");
   }
   const AscendingFactors sorted = ascending_factors(m_values);
   std::vector<CompensatedSum> totals(sorted.factors.size());
@@ -209,12 +209,11 @@ void overlapping_difference_sums(std::span<const double> x, int order,
 void allan_hadamard_difference_sums(std::span<const double> x,
                                     std::span<const std::int64_t> m_values,
                                     std::span<double> oavar_sums, std::span<double> ohvar_sums) {
-  if (oavar_sums.size() != m_values.size() || ohvar_sums.size() != m_values.size()) {
-    throw std::invalid_argument("one sum of each order per factor");
-  }
+  IMUNOISE_EXPECT(oavar_sums.size() == m_values.size() && ohvar_sums.size() == m_values.size(),
+                  "one sum of each order per factor");
   const auto M = static_cast<std::int64_t>(x.size());
   for (std::int64_t m : m_values) {
-    if (m < 1 || M - 3 * m < 1) throw std::invalid_argument("factor without a third difference");
+    IMUNOISE_EXPECT(m >= 1 && M - 3 * m >= 1, "factor without a third difference");
   }
   const AscendingFactors sorted = ascending_factors(m_values);
   std::vector<CompensatedSum> totals2(sorted.factors.size());

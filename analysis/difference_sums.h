@@ -24,6 +24,7 @@ inline constexpr std::int64_t kDifferenceBlock = 2048;
 /// differences span at most kSharedPassSpan samples are evaluated together, block by block,
 /// while the block and its span stay in cache: the array is read from memory once for all of
 /// them. The larger factors take one pass per kLargePassFactors consecutive factors.
+/// @throws ContractViolation for another ORDER, sizes that differ or a factor without a term.
 void overlapping_difference_sums(std::span<const double> x, int order,
                                  std::span<const std::int64_t> m_values, std::span<double> sums);
 
@@ -45,7 +46,7 @@ inline constexpr std::size_t kLargePassFactors = 8;
 /// 3, bit for bit what overlapping_difference_sums gives for each order (same blocks, lanes
 /// and additions), but x_k … x_{k+3m} are read once for both: 4 streams instead of 7. The
 /// factors with 3m ≤ kSharedPassSpan share one cache-resident pass, the larger ones take one
-/// pass per kLargeJointPassFactors.
+/// pass per kLargeJointPassFactors. @throws ContractViolation as overlapping_difference_sums().
 void allan_hadamard_difference_sums(std::span<const double> x,
                                     std::span<const std::int64_t> m_values,
                                     std::span<double> oavar_sums, std::span<double> ohvar_sums);

@@ -100,14 +100,13 @@ struct GreenhallSetup {
 GreenhallSetup greenhall_setup(const char* where, int alpha, int d, std::int64_t m,
                                std::int64_t n_phase, bool overlapping, bool modified) {
   const std::string w(where);
-  IMUNOISE_CHECK(d >= 1 && d <= 3, AnalysisError,
-                 w + ": d must be 1, 2 or 3 (got " + std::to_string(d) + ")");
+  IMUNOISE_EXPECT(d >= 1 && d <= 3, w + ": d must be 1, 2 or 3 (got " + std::to_string(d) + ")");
   IMUNOISE_CHECK(alpha >= -4 && alpha <= 2, AnalysisError,
                  w + ": alpha must be in -4..2 (got " + std::to_string(alpha) + ")");
   IMUNOISE_CHECK(alpha + 2 * d > 1, AnalysisError,
                  w + ": alpha + 2d must exceed 1, the variance diverges otherwise (alpha=" +
                      std::to_string(alpha) + ", d=" + std::to_string(d) + ")");
-  IMUNOISE_CHECK(m >= 1, AnalysisError, w + ": m must be >= 1 (got " + std::to_string(m) + ")");
+  IMUNOISE_EXPECT(m >= 1, w + ": m must be >= 1 (got " + std::to_string(m) + ")");
   const std::int64_t f = modified ? 1 : m;
   const std::int64_t s = overlapping ? m : 1;
   const std::int64_t l = m / f + m * d;  // span of the filter in phase samples
@@ -173,8 +172,8 @@ GreenhallCoefficients greenhall_table3(int d) {
   // GR03 Table 3: s_z(0; F=m, alpha=1, d) ≈ b0 + b1·ln m for large m.
   static constexpr std::array<GreenhallCoefficients, 3> kTable3 = {
       {{6.0, 4.0}, {15.23, 12.0}, {47.8, 40.0}}};
-  IMUNOISE_CHECK(d >= 1 && d <= 3, AnalysisError,
-                 "greenhall_table3: d must be 1, 2 or 3 (got " + std::to_string(d) + ")");
+  IMUNOISE_EXPECT(d >= 1 && d <= 3,
+                  "greenhall_table3: d must be 1, 2 or 3 (got " + std::to_string(d) + ")");
   return kTable3[static_cast<std::size_t>(d - 1)];
 }
 

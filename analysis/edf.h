@@ -6,7 +6,9 @@
 /// Conventions (theory.md §1.1, §3): n_phase = M phase samples x_0 … x_{M−1} (M = n + 1 for
 /// n rate samples); τ = m·τ0; alpha = exponent of S_y(f) ∝ f^alpha (2 white PM, 1 flicker PM,
 /// 0 white FM, −1 flicker FM, −2 random-walk FM, −3 flicker-walk FM, −4 random-run FM).
-/// Every function throws imunoise::AnalysisError for arguments outside its documented range.
+/// Every function throws imunoise::AnalysisError for a noise type alpha outside its range (alpha
+/// may be the user's `allan --alpha`) or a record too short for m, and ContractViolation for a
+/// d or m outside its range or an unknown deviation type (the callers derive them).
 #pragma once
 
 #include <cstdint>

@@ -82,8 +82,8 @@ double parabolic_sum(const double* x, std::int64_t n, std::int64_t m) {
 VarianceEstimate theo1_variance(std::span<const double> phase, std::int64_t m, double tau0_s,
                                 bool bias_corrected, int alpha) {
   const auto M = static_cast<std::int64_t>(phase.size());
-  IMUNOISE_CHECK(m >= 2 && m % 2 == 0, AnalysisError,
-                 "theo1: averaging factor must be even and >= 2, got " + std::to_string(m));
+  IMUNOISE_EXPECT(m >= 2 && m % 2 == 0,
+                  "theo1: averaging factor must be even and >= 2, got " + std::to_string(m));
   IMUNOISE_CHECK(m <= M - 1, AnalysisError,
                  "theo1: averaging factor " + std::to_string(m) + " needs at least " +
                      std::to_string(m + 1) + " phase samples, got " + std::to_string(M));
@@ -156,8 +156,7 @@ double theo1_edf(int alpha, std::int64_t m, std::int64_t n_phase) {
 
 VarianceEstimate parabolic_variance(std::span<const double> phase, std::int64_t m, double tau0_s) {
   const auto M = static_cast<std::int64_t>(phase.size());
-  IMUNOISE_CHECK(m >= 1, AnalysisError,
-                 "pdev: averaging factor must be >= 1, got " + std::to_string(m));
+  IMUNOISE_EXPECT(m >= 1, "pdev: averaging factor must be >= 1, got " + std::to_string(m));
   detail::check_sample_period(tau0_s);
   IMUNOISE_CHECK(M - 2 * m >= 1, AnalysisError,
                  "pdev: too few samples at m = " + std::to_string(m) + ": " + std::to_string(M) +
@@ -178,8 +177,7 @@ VarianceEstimate parabolic_variance(std::span<const double> phase, std::int64_t 
 VarianceEstimate sample_variance_of_averages(std::span<const double> phase, std::int64_t m,
                                              double tau0_s) {
   const auto M = static_cast<std::int64_t>(phase.size());
-  IMUNOISE_CHECK(m >= 1, AnalysisError,
-                 "std dev: averaging factor must be >= 1, got " + std::to_string(m));
+  IMUNOISE_EXPECT(m >= 1, "std dev: averaging factor must be >= 1, got " + std::to_string(m));
   detail::check_sample_period(tau0_s);
   const std::int64_t J = M >= 1 ? (M - 1) / m : 0;
   IMUNOISE_CHECK(J >= 2, AnalysisError,

@@ -40,7 +40,8 @@ namespace imunoise::analysis {
 /// @param[in] tau0_s sample period τ0 > 0 [s]
 /// @param[in] bias_corrected apply the noise-type bias removal above
 /// @param[in] alpha  power-law exponent of S_y(f) for the bias removal, −2..+2
-/// @throws AnalysisError on odd/out-of-range m, bad τ0 or alpha outside −2..+2.
+/// @throws AnalysisError when m > M−1 or alpha is outside −2..+2; ContractViolation on an odd
+///   m or m < 2 (the τ grids give even m) or τ0 ≤ 0.
 VarianceEstimate theo1_variance(std::span<const double> phase, std::int64_t m, double tau0_s,
                                 bool bias_corrected = false, int alpha = 0);
 
@@ -65,14 +66,14 @@ double theo1_edf(int alpha, std::int64_t m, std::int64_t n_phase);
 ///   PVAR(τ) = 72/(n·m⁴·τ²) · Σ_{i=0}^{n−1} [ Σ_{k=0}^{m−1} c_k·(x_{i+k} − x_{i+k+m}) ]²,
 /// τ = m·τ0; at m = 1 the weights vanish and PVAR is defined as the overlapping AVAR
 /// (n = M − 2), as SigmaTheta does. O(M) per m (sliding-window recursion, see the .cpp).
-/// @throws AnalysisError when m < 1, τ0 ≤ 0 or M < 2m + 1.
+/// @throws AnalysisError when M < 2m + 1; ContractViolation when m < 1 or τ0 ≤ 0.
 VarianceEstimate parabolic_variance(std::span<const double> phase, std::int64_t m, double tau0_s);
 
 /// Sample variance (N−1 normalisation) of the J = ⌊(M−1)/m⌋ non-overlapping m-averages of
 /// the rate, ȳ_j = (x_{(j+1)m} − x_{jm})/(m·τ0) — the "standard deviation" rows of the
 /// SP 1065 test suite. Not a stability measure (it diverges for flicker and random-walk
 /// noise); provided to check against published tables. n_terms = J. O(J).
-/// @throws AnalysisError when m < 1, τ0 ≤ 0 or J < 2.
+/// @throws AnalysisError when J < 2; ContractViolation when m < 1 or τ0 ≤ 0.
 VarianceEstimate sample_variance_of_averages(std::span<const double> phase, std::int64_t m,
                                              double tau0_s);
 /// @}

@@ -56,10 +56,11 @@ inline std::vector<std::size_t> ascending_order(std::span<const std::int64_t> va
   return order;
 }
 
-/// Throws AnalysisError "<where>sample period tau0 must be positive and finite, got …".
+/// Throws ContractViolation "<where>sample period tau0 must be positive and finite, got …" (the
+/// callers validated τ0: the recording's period, `allan --tau0`).
 inline void check_sample_period(double tau0_s, const std::string& where = "") {
-  IMUNOISE_CHECK(
-      tau0_s > 0.0 && std::isfinite(tau0_s), AnalysisError,
+  IMUNOISE_EXPECT(
+      tau0_s > 0.0 && std::isfinite(tau0_s),
       where + "sample period tau0 must be positive and finite, got " + std::to_string(tau0_s));
 }
 

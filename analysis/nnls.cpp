@@ -31,10 +31,10 @@ Eigen::VectorXd solve_on_passive_set(const Eigen::MatrixXd& A, const Eigen::Vect
 }  // namespace
 
 Eigen::VectorXd nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int max_iterations) {
-  IMUNOISE_CHECK(A.rows() == b.size(), AnalysisError,
-                 "nnls: A has " + std::to_string(A.rows()) + " rows but b has " +
-                     std::to_string(b.size()) + " entries");
-  IMUNOISE_CHECK(A.cols() >= 1 && A.rows() >= 1, AnalysisError, "nnls: empty system");
+  IMUNOISE_EXPECT(A.rows() == b.size(), "nnls: A has " + std::to_string(A.rows()) +
+                                            " rows but b has " + std::to_string(b.size()) +
+                                            " entries");
+  IMUNOISE_EXPECT(A.cols() >= 1 && A.rows() >= 1, "nnls: empty system");
   IMUNOISE_CHECK(A.allFinite() && b.allFinite(), AnalysisError,
                  "nnls: A and b must be finite (found NaN or infinity)");
   const Eigen::Index n = A.cols();

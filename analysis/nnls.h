@@ -23,8 +23,9 @@ namespace imunoise::analysis {
 ///                           0 = 3·n, Lawson & Hanson's suggestion
 /// @return x ≥ 0 (n entries) satisfying the KKT conditions to rounding: w = Aᵀ(b − A·x) ≤ 0
 ///         where x_j = 0 and w_j ≈ 0 where x_j > 0
-/// @throws AnalysisError on mismatched sizes, non-finite input, or no convergence within
-///         max_iterations (only possible for degenerate, cycling problems).
+/// @throws AnalysisError on non-finite input (numbers the data gave), or no convergence within
+///         max_iterations (only possible for degenerate, cycling problems); ContractViolation
+///         on mismatched sizes or an empty system.
 Eigen::VectorXd nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int max_iterations = 0);
 
 }  // namespace imunoise::analysis

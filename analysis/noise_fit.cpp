@@ -249,12 +249,14 @@ void validate_points(std::span<const FitPoint> points, const char* where) {
       std::string(where) + ": all variances are zero (constant or noiseless data); nothing to fit");
 }
 
+/// The τ range is the user's (`analyze --tau-min/--tau-max`, checked here: InputError); the
+/// other options are the caller's choice (ContractViolation).
 void validate_options(const FitOptions& options) {
-  IMUNOISE_CHECK(options.weight_iterations >= 0 && options.weight_iterations <= 100, InputError,
-                 "fit options: weight_iterations must be in 0 … 100 (got " +
-                     std::to_string(options.weight_iterations) + ")");
-  IMUNOISE_CHECK(
-      std::isfinite(options.min_edf) && options.min_edf >= 0.0, InputError,
+  IMUNOISE_EXPECT(options.weight_iterations >= 0 && options.weight_iterations <= 100,
+                  "fit options: weight_iterations must be in 0 … 100 (got " +
+                      std::to_string(options.weight_iterations) + ")");
+  IMUNOISE_EXPECT(
+      std::isfinite(options.min_edf) && options.min_edf >= 0.0,
       "fit options: min_edf must be finite and >= 0 (got " + std::to_string(options.min_edf) + ")");
   IMUNOISE_CHECK(std::isfinite(options.tau_min_s) && options.tau_min_s >= 0.0 &&
                      std::isfinite(options.tau_max_s) && options.tau_max_s >= 0.0,
@@ -262,14 +264,14 @@ void validate_options(const FitOptions& options) {
   IMUNOISE_CHECK(options.tau_max_s == 0.0 || options.tau_max_s > options.tau_min_s, InputError,
                  "fit options: tau_max_s (" + std::to_string(options.tau_max_s) +
                      " s) must exceed tau_min_s (" + std::to_string(options.tau_min_s) + " s)");
-  IMUNOISE_CHECK(std::isfinite(options.selection_threshold) && options.selection_threshold >= 0.0,
-                 InputError,
-                 "fit options: selection_threshold must be finite and >= 0 (got " +
-                     std::to_string(options.selection_threshold) + ")");
+  IMUNOISE_EXPECT(std::isfinite(options.selection_threshold) && options.selection_threshold >= 0.0,
+                  "fit options: selection_threshold must be finite and >= 0 (got " +
+                      std::to_string(options.selection_threshold) + ")");
+  // `analyze --sinusoid-hz` is checked against (0, Nyquist) by the CLI.
   for (double f : options.sinusoid_frequencies_hz)
-    IMUNOISE_CHECK(std::isfinite(f) && f > 0.0, InputError,
-                   "fit options: sinusoid frequency must be finite and > 0 Hz (got " +
-                       std::to_string(f) + ")");
+    IMUNOISE_EXPECT(std::isfinite(f) && f > 0.0,
+                    "fit options: sinusoid frequency must be finite and > 0 Hz (got " +
+                        std::to_string(f) + ")");
 }
 
 bool passes_filters(const FitPoint& p, const FitOptions& options) {
@@ -452,13 +454,12 @@ std::vector<std::pair<double, double>> brackets_around(const std::vector<Column>
 
 std::vector<FitPoint> fit_points(const DeviationCurve& curve) {
   const DeviationType type = curve.type;
-  IMUNOISE_CHECK(type == DeviationType::adev || type == DeviationType::oadev ||
-                     type == DeviationType::totdev || type == DeviationType::hdev ||
-                     type == DeviationType::ohdev,
-                 InputError,
-                 "fit_points: the noise fit needs an AVAR (adev, oadev, totdev) or HVAR (hdev, "
-                 "ohdev) curve, not " +
-                     std::string(to_string(type)));
+  IMUNOISE_EXPECT(type == DeviationType::adev || type == DeviationType::oadev ||
+                      type == DeviationType::totdev || type == DeviationType::hdev ||
+                      type == DeviationType::ohdev,
+                  "fit_points: the noise fit needs an AVAR (adev, oadev, totdev) or HVAR (hdev, "
+                  "ohdev) curve, not " +
+                      std::string(to_string(type)));
   std::vector<FitPoint> out;
   out.reserve(curve.points.size());
   for (const DeviationPoint& p : curve.points) {
@@ -494,8 +495,8 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
   if (with_gm)
     for (double t : gauss_markov_grid(data, step_ratio))
       columns.push_back({ColumnKind::gauss_markov, NoiseTerm::white_noise, t, 0.0});
-  IMUNOISE_CHECK(!columns.empty(), InputError,
-                 "fit options: no term allowed (allow_terms all false, no GM, no sinusoid)");
+  IMUNOISE_EXPECT(!columns.empty(),
+                  "fit options: no term allowed (allow_terms all false, no GM, no sinusoid)");
 
   Solution s = solve(data, columns, hadamard, iterations, offset);
   if (with_gm) {
@@ -552,9 +553,9 @@ Data used_data(std::span<const FitPoint> points, std::span<const std::size_t> us
                const char* where) {
   Data data;
   for (std::size_t k : used) {
-    IMUNOISE_CHECK(k < points.size(), AnalysisError,
-                   std::string(where) + ": used index " + std::to_string(k) + " is out of range (" +
-                       std::to_string(points.size()) + " points)");
+    IMUNOISE_EXPECT(k < points.size(), std::string(where) + ": used index " + std::to_string(k) +
+                                           " is out of range (" + std::to_string(points.size()) +
+                                           " points)");
     const FitPoint& p = points[k];
     IMUNOISE_CHECK(p.avar > 0.0 && p.edf > 0.0, AnalysisError,
                    std::string(where) + ": point " + std::to_string(k) +
@@ -587,8 +588,8 @@ FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& s
                             const FitOptions& options) {
   validate_options(options);
   validate_points(points, "refit_fixed_terms");
-  IMUNOISE_CHECK(structure.used.size() >= 2, AnalysisError,
-                 "refit_fixed_terms: the structure uses fewer than 2 points");
+  IMUNOISE_EXPECT(structure.used.size() >= 2,
+                  "refit_fixed_terms: the structure uses fewer than 2 points");
   const Data data = used_data(points, structure.used, "refit_fixed_terms");
   const bool hadamard = structure.hadamard;
   std::vector<Column> columns = structure_columns(structure);
@@ -602,15 +603,14 @@ FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& s
 
 std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> points,
                                                  const FitResult& fit, int per_decade) {
-  IMUNOISE_CHECK(per_decade >= 1 && per_decade <= 10, InputError,
-                 "multi_gm_representation: per_decade must be in 1 … 10 (got " +
-                     std::to_string(per_decade) + ")");
+  IMUNOISE_EXPECT(per_decade >= 1 && per_decade <= 10,
+                  "multi_gm_representation: per_decade must be in 1 … 10 (got " +
+                      std::to_string(per_decade) + ")");
   const auto b_index = static_cast<std::size_t>(NoiseTerm::bias_instability);
   if (!fit.terms[b_index].identified) return {};
   validate_points(points, "multi_gm_representation");
   const Data data = used_data(points, fit.used, "multi_gm_representation");
-  IMUNOISE_CHECK(data.size() >= 2, AnalysisError,
-                 "multi_gm_representation: the fit uses fewer than 2 points");
+  IMUNOISE_EXPECT(data.size() >= 2, "multi_gm_representation: the fit uses fewer than 2 points");
   const double tau_lo = *std::min_element(data.tau.begin(), data.tau.end());
   const double tau_hi = *std::max_element(data.tau.begin(), data.tau.end());
 
@@ -642,12 +642,12 @@ std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> point
 
 double fraction_inside_ci(std::span<const FitPoint> points, std::span<const std::size_t> used,
                           const NoiseCoefficients& model, double confidence, bool hadamard) {
-  IMUNOISE_CHECK(!used.empty(), AnalysisError, "fraction_inside_ci: no points to check");
+  IMUNOISE_EXPECT(!used.empty(), "fraction_inside_ci: no points to check");
   std::size_t inside = 0;
   for (std::size_t k : used) {
-    IMUNOISE_CHECK(k < points.size(), AnalysisError,
-                   "fraction_inside_ci: index " + std::to_string(k) + " is out of range (" +
-                       std::to_string(points.size()) + " points)");
+    IMUNOISE_EXPECT(k < points.size(), "fraction_inside_ci: index " + std::to_string(k) +
+                                           " is out of range (" + std::to_string(points.size()) +
+                                           " points)");
     const FitPoint& p = points[k];
     IMUNOISE_CHECK(std::isfinite(p.tau_s) && p.tau_s > 0.0 && std::isfinite(p.avar) &&
                        p.avar >= 0.0 && std::isfinite(p.edf) && p.edf > 0.0,

@@ -34,7 +34,7 @@ struct FitPoint {
 /// back to a lag-1 estimate on ~30 points and can report white or flicker angle noise
 /// (alpha 2, 1), whose EDF is of order M: such a point would get ~10³× its due weight. It
 /// never raises an EDF; it lowers genuine quantization-dominated points by at most ~3×.
-/// @throws InputError for the other statistics (their expectation is not AVAR or HVAR).
+/// @throws ContractViolation for the other statistics (their expectation is not AVAR or HVAR).
 std::vector<FitPoint> fit_points(const DeviationCurve& curve);
 
 /// Whether fit_noise_model() adds first-order Gauss–Markov terms.
@@ -129,7 +129,8 @@ struct FitResult {
 ///
 /// @throws AnalysisError when a value is not finite, τ ≤ 0, σ̂² < 0, all variances are 0, or
 ///         fewer than 2 points survive the EDF/τ filters (the message names the reason);
-///         InputError when an option is out of range.
+///         InputError when the τ range (the user's) is out of range; ContractViolation when
+///         another option is, or no term is allowed.
 FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& options = {});
 
 /// Re-fits the structure of a previous fit — the same points (STRUCTURE.used), the identified
@@ -137,7 +138,8 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
 /// the structure's value) and the sinusoid frequencies — with no model selection and no τ-range
 /// choice. The estimator the parametric bootstrap re-runs on each simulated replicate.
 /// Only weight_iterations is read from OPTIONS; the basis (AVAR/HVAR) is STRUCTURE's.
-/// @throws AnalysisError when a used index is out of range or its point is unusable.
+/// @throws AnalysisError when a used point is unusable or the structure has no term;
+///   ContractViolation when a used index is out of range or fewer than 2 points are used.
 FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
                             const FitOptions& options);
 
@@ -151,15 +153,16 @@ FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& s
 /// high-ν short-τ points too (seed study in tests/analysis/noise_fit_test.cpp: 2 h at 100 Hz,
 /// §8 model, flat region only → ~50 % of the points inside their 95 % CI, whole range → ~100 %).
 /// Empty when B is not identified.
-/// @throws AnalysisError when FIT.used does not index usable POINTS; InputError for
-///         per_decade outside 1 … 10.
+/// @throws AnalysisError when a point of FIT.used is unusable; ContractViolation when FIT.used
+///         does not index POINTS (or names fewer than 2) or per_decade is outside 1 … 10.
 std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> points,
                                                  const FitResult& fit, int per_decade = 1);
 
 /// Fraction of the points POINTS[USED] at which the model deviation √model_avar (√model_hvar
 /// when HADAMARD) lies inside the two-sided χ² interval of coverage CONFIDENCE of the measured
 /// deviation √σ̂² (theory.md §3.1). 1 means the model never leaves the intervals.
-/// @throws AnalysisError when USED is empty, an index is out of range or a point has no EDF.
+/// @throws AnalysisError when a point has no EDF; ContractViolation when USED is empty, an index
+///   is out of range or CONFIDENCE is outside (0, 1).
 double fraction_inside_ci(std::span<const FitPoint> points, std::span<const std::size_t> used,
                           const NoiseCoefficients& model, double confidence = 0.95,
                           bool hadamard = false);
@@ -182,7 +185,8 @@ PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> p
 /// re-weighted NNLS, GM T_c held) raises the gamma deviance by χ²₁(CONFIDENCE)·n_used/n_eff —
 /// the correlation-corrected scale of the model selection. Infinity if no c within reach of
 /// the data (the term alone 100× the data at its most favourable point) does.
-/// @throws AnalysisError when FIT.used does not index usable POINTS.
+/// @throws AnalysisError when a point of FIT.used is unusable, ContractViolation when FIT.used
+///   does not index POINTS.
 double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
                            double confidence,
                            int weight_iterations = FitOptions{}.weight_iterations);

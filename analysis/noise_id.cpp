@@ -76,10 +76,9 @@ std::optional<double> lag1_autocorrelation(const std::vector<double>& z) {
 }  // namespace
 
 std::optional<int> lag1_noise_alpha(std::span<const double> phase, std::int64_t m, int d_max) {
-  IMUNOISE_CHECK(m >= 1, AnalysisError,
-                 "lag1_noise_alpha: m must be >= 1 (got " + std::to_string(m) + ")");
-  IMUNOISE_CHECK(d_max >= 0 && d_max <= 3, AnalysisError,
-                 "lag1_noise_alpha: d_max must be in 0..3 (got " + std::to_string(d_max) + ")");
+  IMUNOISE_EXPECT(m >= 1, "lag1_noise_alpha: m must be >= 1 (got " + std::to_string(m) + ")");
+  IMUNOISE_EXPECT(d_max >= 0 && d_max <= 3,
+                  "lag1_noise_alpha: d_max must be in 0..3 (got " + std::to_string(d_max) + ")");
   if (phase.empty()) return std::nullopt;
   const auto count = static_cast<std::int64_t>(phase.size() - 1) / m + 1;
   if (count < kMinNoiseIdPoints) return std::nullopt;
@@ -133,8 +132,7 @@ AlphaRange supported_alpha_range(DeviationType type) {
 }
 
 int noise_alpha_for(DeviationType type, std::span<const double> phase, std::int64_t m) {
-  IMUNOISE_CHECK(m >= 1, AnalysisError,
-                 "noise_alpha_for: m must be >= 1 (got " + std::to_string(m) + ")");
+  IMUNOISE_EXPECT(m >= 1, "noise_alpha_for: m must be >= 1 (got " + std::to_string(m) + ")");
   const AlphaRange range = supported_alpha_range(type);
   const int d_max = range.min == -4 ? 3 : 2;
   std::optional<int> alpha = lag1_noise_alpha(phase, m, d_max);

@@ -28,7 +28,7 @@ inline constexpr std::int64_t kMinNoiseIdPoints = 30;
 /// @param[in] d_max maximum number of differences, 0 … 3 (2 for Allan, 3 for Hadamard types)
 /// @return std::nullopt when fewer than kMinNoiseIdPoints decimated points exist or the
 ///         detrended data have no variance (e.g. noiseless input).
-/// @throws AnalysisError for m < 1 or d_max outside 0 … 3.
+/// @throws ContractViolation for m < 1 or d_max outside 0 … 3.
 std::optional<int> lag1_noise_alpha(std::span<const double> phase, std::int64_t m, int d_max);
 
 /// Range of alpha for which the EDF of a statistic is defined (GR03 needs alpha + 2d > 1):

@@ -90,9 +90,8 @@ double averaged_dof(const PowerCovariance& cov, std::size_t segments, std::size_
 }
 
 void check_options(const WelchOptions& options) {
-  IMUNOISE_CHECK(std::isfinite(options.overlap) && options.overlap >= 0.0 && options.overlap < 1.0,
-                 InputError,
-                 "welch: overlap must be in [0, 1) (got " + text(options.overlap) + ")");
+  IMUNOISE_EXPECT(std::isfinite(options.overlap) && options.overlap >= 0.0 && options.overlap < 1.0,
+                  "welch: overlap must be in [0, 1) (got " + text(options.overlap) + ")");
   switch (options.window) {
     case Window::hann:
     case Window::hamming:
@@ -100,7 +99,7 @@ void check_options(const WelchOptions& options) {
     case Window::rectangular:
       break;
     default:
-      throw InputError("welch: unknown window");
+      throw ContractViolation("welch: unknown window");
   }
   switch (options.detrend) {
     case Detrend::none:
@@ -108,7 +107,7 @@ void check_options(const WelchOptions& options) {
     case Detrend::linear:
       break;
     default:
-      throw InputError("welch: unknown detrend mode");
+      throw ContractViolation("welch: unknown detrend mode");
   }
 }
 
@@ -152,8 +151,8 @@ double detrended_mean_square(std::span<const double> x, Detrend mode) {
 }  // namespace
 
 std::vector<double> window_coefficients(Window window, std::size_t length) {
-  IMUNOISE_CHECK(length >= 2, InputError,
-                 "window_coefficients: length must be >= 2 (got " + std::to_string(length) + ")");
+  IMUNOISE_EXPECT(length >= 2,
+                  "window_coefficients: length must be >= 2 (got " + std::to_string(length) + ")");
   std::vector<double> w(length);
   const double step = 2.0 * std::numbers::pi / static_cast<double>(length);
   for (std::size_t n = 0; n < length; ++n) {
@@ -173,7 +172,7 @@ std::vector<double> window_coefficients(Window window, std::size_t length) {
         w[n] = 1.0;
         break;
       default:
-        throw InputError("window_coefficients: unknown window");
+        throw ContractViolation("window_coefficients: unknown window");
     }
   }
   return w;
@@ -182,7 +181,7 @@ std::vector<double> window_coefficients(Window window, std::size_t length) {
 double window_overlap_correlation(std::span<const double> window, std::size_t shift) {
   double energy = 0.0;
   for (double v : window) energy += v * v;
-  IMUNOISE_CHECK(energy > 0.0, InputError, "window_overlap_correlation: window is all zero");
+  IMUNOISE_EXPECT(energy > 0.0, "window_overlap_correlation: window is all zero");
   if (shift >= window.size()) return 0.0;
   double lagged = 0.0;
   for (std::size_t n = 0; n + shift < window.size(); ++n) lagged += window[n] * window[n + shift];
@@ -190,9 +189,9 @@ double window_overlap_correlation(std::span<const double> window, std::size_t sh
 }
 
 double effective_segments(std::span<const double> window, std::size_t segments, std::size_t step) {
-  IMUNOISE_CHECK(segments > 0 && step > 0, InputError,
-                 "effective_segments: segments and step must be > 0 (got " +
-                     std::to_string(segments) + ", " + std::to_string(step) + ")");
+  IMUNOISE_EXPECT(segments > 0 && step > 0,
+                  "effective_segments: segments and step must be > 0 (got " +
+                      std::to_string(segments) + ", " + std::to_string(step) + ")");
   const double k = static_cast<double>(segments);
   double sum = 0.0;
   for (std::size_t l = 1; l < segments && l * step < window.size(); ++l) {
@@ -227,15 +226,14 @@ struct WelchEstimator::Impl {
 WelchEstimator::WelchEstimator(std::size_t segment_length, const WelchOptions& options)
     : impl_(std::make_unique<Impl>()) {
   check_options(options);
-  IMUNOISE_CHECK(segment_length >= 2 &&
-                     segment_length <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
-                 InputError,
-                 "welch: segment_length must be >= 2 and fit an int (got " +
-                     std::to_string(segment_length) + ")");
-  IMUNOISE_CHECK(
-      options.segment_length == 0 || options.segment_length == segment_length, InputError,
-      "welch: options.segment_length (" + std::to_string(options.segment_length) +
-          ") differs from the estimator's segment_length (" + std::to_string(segment_length) + ")");
+  IMUNOISE_EXPECT(segment_length >= 2 &&
+                      segment_length <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                  "welch: segment_length must be >= 2 and fit an int (got " +
+                      std::to_string(segment_length) + ")");
+  IMUNOISE_EXPECT(options.segment_length == 0 || options.segment_length == segment_length,
+                  "welch: options.segment_length (" + std::to_string(options.segment_length) +
+                      ") differs from the estimator's segment_length (" +
+                      std::to_string(segment_length) + ")");
   Impl& s = *impl_;
   s.length = segment_length;
   s.options = options;
@@ -275,9 +273,9 @@ std::size_t WelchEstimator::segment_length() const { return impl_->length; }
 bool WelchEstimator::planned_from_wisdom() const { return impl_->from_wisdom; }
 
 std::size_t automatic_segment_length(std::size_t samples) {
-  IMUNOISE_CHECK(samples >= 16, InputError,
-                 "welch: record of " + std::to_string(samples) +
-                     " samples is too short (automatic segment length needs >= 16)");
+  IMUNOISE_EXPECT(samples >= 16,
+                  "welch: record of " + std::to_string(samples) +
+                      " samples is too short (automatic segment length needs >= 16)");
   std::size_t length = 16;
   while (length * 2 <= samples / 8) length *= 2;
   return length;
@@ -285,15 +283,16 @@ std::size_t automatic_segment_length(std::size_t samples) {
 
 Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_hz) {
   Impl& s = *impl_;
-  IMUNOISE_CHECK(std::isfinite(sample_rate_hz) && sample_rate_hz > 0.0, InputError,
-                 "welch: sample rate must be finite and > 0 (got " + text(sample_rate_hz) + " Hz)");
-  IMUNOISE_CHECK(x.size() >= s.length, InputError,
-                 "welch: record of " + std::to_string(x.size()) +
-                     " samples is shorter than one segment of " + std::to_string(s.length));
+  IMUNOISE_EXPECT(
+      std::isfinite(sample_rate_hz) && sample_rate_hz > 0.0,
+      "welch: sample rate must be finite and > 0 (got " + text(sample_rate_hz) + " Hz)");
+  IMUNOISE_EXPECT(x.size() >= s.length, "welch: record of " + std::to_string(x.size()) +
+                                            " samples is shorter than one segment of " +
+                                            std::to_string(s.length));
   for (std::size_t n = 0; n < x.size(); ++n) {
     if (!std::isfinite(x[n])) {
-      throw InputError("welch: sample " + std::to_string(n) + " is not finite (" + text(x[n]) +
-                       ")");
+      throw ContractViolation("welch: sample " + std::to_string(n) + " is not finite (" +
+                              text(x[n]) + ")");
     }
   }
 
@@ -360,9 +359,9 @@ Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_
 Spectrum welch_psd(std::span<const double> x, double sample_rate_hz, const WelchOptions& options) {
   std::size_t length = options.segment_length;
   if (length == 0) {
-    IMUNOISE_CHECK(x.size() >= 16, InputError,
-                   "welch: record of " + std::to_string(x.size()) +
-                       " samples is too short (automatic segment length needs >= 16)");
+    IMUNOISE_EXPECT(x.size() >= 16,
+                    "welch: record of " + std::to_string(x.size()) +
+                        " samples is too short (automatic segment length needs >= 16)");
     length = automatic_segment_length(x.size());
   }
   WelchOptions resolved = options;
@@ -378,9 +377,9 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
   std::size_t length = options.segment_length;
   if (length == 0) {
     // The automatic length of welch_psd for the longest piece.
-    IMUNOISE_CHECK(longest >= 16, InputError,
-                   "welch: the longest piece has " + std::to_string(longest) +
-                       " samples, too short (automatic segment length needs >= 16)");
+    IMUNOISE_EXPECT(longest >= 16,
+                    "welch: the longest piece has " + std::to_string(longest) +
+                        " samples, too short (automatic segment length needs >= 16)");
     length = automatic_segment_length(longest);
   }
   WelchOptions resolved = options;
@@ -394,9 +393,8 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
     total_samples += p.size();
   }
   if (pieces_used != nullptr) *pieces_used = parts.size();
-  IMUNOISE_CHECK(
-      !parts.empty(), InputError,
-      "welch: no piece is as long as one segment of " + std::to_string(length) + " samples");
+  IMUNOISE_EXPECT(!parts.empty(), "welch: no piece is as long as one segment of " +
+                                      std::to_string(length) + " samples");
   if (parts.size() == 1) return std::move(parts.front());
 
   Spectrum out;
@@ -436,16 +434,14 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
 }
 
 Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
-  IMUNOISE_CHECK(
-      bins_per_decade >= 1, InputError,
-      "log_bin: bins_per_decade must be >= 1 (got " + std::to_string(bins_per_decade) + ")");
-  IMUNOISE_CHECK(
+  IMUNOISE_EXPECT(bins_per_decade >= 1, "log_bin: bins_per_decade must be >= 1 (got " +
+                                            std::to_string(bins_per_decade) + ")");
+  IMUNOISE_EXPECT(
       raw.frequency_hz.size() == raw.density.size() && raw.frequency_hz.size() == raw.dof.size(),
-      InputError,
       "log_bin: frequency, density and dof sizes differ (" +
           std::to_string(raw.frequency_hz.size()) + ", " + std::to_string(raw.density.size()) +
           ", " + std::to_string(raw.dof.size()) + ")");
-  IMUNOISE_CHECK(raw.raw_bins.empty(), InputError, "log_bin: the spectrum is already binned");
+  IMUNOISE_EXPECT(raw.raw_bins.empty(), "log_bin: the spectrum is already binned");
   // The covariance model indexes raw bins by j = f/Δf: only for a complete Welch spectrum.
   const bool correlated = !raw.power_covariance.empty() && raw.segments > 0 &&
                           raw.power_covariance.size() == raw.segment_length / 2 + 1 &&
@@ -469,9 +465,9 @@ Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
   while (j < n && !(raw.frequency_hz[j] > 0.0)) ++j;  // drop DC (and anything ≤ 0)
   for (std::size_t k = j; k < n; ++k) {
     const double f = raw.frequency_hz[k];
-    IMUNOISE_CHECK(std::isfinite(f) && (k == j || f > raw.frequency_hz[k - 1]), InputError,
-                   "log_bin: frequencies must be finite and increasing (bin " + std::to_string(k) +
-                       ": " + text(f) + " Hz)");
+    IMUNOISE_EXPECT(std::isfinite(f) && (k == j || f > raw.frequency_hz[k - 1]),
+                    "log_bin: frequencies must be finite and increasing (bin " + std::to_string(k) +
+                        ": " + text(f) + " Hz)");
   }
   while (j < n) {
     const double key = bin_of(raw.frequency_hz[j]);

@@ -69,7 +69,7 @@ struct Spectrum {
 /// the variance of the averaged periodogram)
 /// @{
 
-/// The L window coefficients w_0 … w_{L−1}. Throws InputError when length < 2.
+/// The L window coefficients w_0 … w_{L−1}. Throws ContractViolation when length < 2.
 std::vector<double> window_coefficients(Window window, std::size_t length);
 
 /// ρ(shift) = (Σ_n w_n w_{n+shift})² / (Σ_n w_n²)², the squared correlation of two segments
@@ -78,7 +78,7 @@ double window_overlap_correlation(std::span<const double> window, std::size_t sh
 
 /// Equivalent number of independent segments
 /// K_eff = K / (1 + 2 Σ_{l=1}^{K−1} (1 − l/K) ρ(l·step)); a raw bin has 2·K_eff dof
-/// (K_eff at DC and Nyquist). Throws InputError when segments or step is 0.
+/// (K_eff at DC and Nyquist). Throws ContractViolation when segments or step is 0.
 double effective_segments(std::span<const double> window, std::size_t segments, std::size_t step);
 
 /// @}
@@ -95,7 +95,7 @@ class WelchEstimator {
  public:
   /// @param[in] segment_length L ≥ 2 samples (options.segment_length must be 0 or equal)
   /// @param[in] options overlap, window, detrend
-  /// @throws InputError on bad options.
+  /// @throws ContractViolation on bad options or a segment length outside 2 … INT_MAX.
   WelchEstimator(std::size_t segment_length, const WelchOptions& options);
   ~WelchEstimator();
   WelchEstimator(WelchEstimator&&) noexcept;
@@ -108,7 +108,8 @@ class WelchEstimator {
   /// segment are ignored (they still enter sample_variance). No heap allocation per segment.
   /// @param[in] x rate samples [unit], n ≥ L, all finite
   /// @param[in] sample_rate_hz f_s = 1/τ0 [Hz], > 0
-  /// @throws InputError when n < L, a value is not finite, or f_s is not positive.
+  /// @throws ContractViolation when n < L, a value is not finite, or f_s is not positive (the
+  ///   axis analysis refuses non-finite samples and records too short before).
   Spectrum estimate(std::span<const double> x, double sample_rate_hz);
 
   std::size_t segment_length() const;
@@ -126,11 +127,11 @@ class WelchEstimator {
 /// two ≤ SAMPLES/8, at least 16 (see WelchOptions::segment_length). A 24 h record at 1 kHz
 /// (86.4 M samples) gives 2^23. The one place this rule lives: welch_psd, pooled_welch_psd
 /// and `imunoise fftw-wisdom --samples` use it.
-/// @throws InputError when SAMPLES < 16.
+/// @throws ContractViolation when SAMPLES < 16 (`fftw-wisdom --samples` is checked first).
 std::size_t automatic_segment_length(std::size_t samples);
 
 /// One-shot Welch estimate (resolves segment_length = 0, see WelchOptions).
-/// @throws InputError as WelchEstimator::estimate(), or when n < 16 for automatic L.
+/// @throws ContractViolation as WelchEstimator::estimate(), or when n < 16 for automatic L.
 Spectrum welch_psd(std::span<const double> x, double sample_rate_hz,
                    const WelchOptions& options = {});
 
@@ -142,7 +143,7 @@ Spectrum welch_psd(std::span<const double> x, double sample_rate_hz,
 /// independent estimates), power_covariance Σ_k K_k·g_k/K with segments = K = Σ K_k, so
 /// log_bin() gives the same dof model as for one record. One piece gives exactly welch_psd.
 /// @param[out] pieces_used number of pieces that entered (optional)
-/// @throws InputError when no piece is at least one segment long, or as welch_psd().
+/// @throws ContractViolation when no piece is at least one segment long, or as welch_psd().
 Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, double sample_rate_hz,
                           const WelchOptions& options = {}, std::size_t* pieces_used = nullptr);
 
@@ -158,8 +159,8 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
 /// dof: from raw.power_covariance when present (accounts for the ~2× correlation of
 /// neighbouring Hann bins: summing raw dofs would overstate the dof of wide bins), else the
 /// sum of the raw dofs.
-/// @throws InputError when bins_per_decade < 1, the vectors differ in size, or raw is
-/// already binned.
+/// @throws ContractViolation when bins_per_decade < 1, the vectors differ in size, raw is
+/// already binned or its frequencies do not increase.
 Spectrum log_bin(const Spectrum& raw, int bins_per_decade = 10);
 
 }  // namespace imunoise::analysis

@@ -26,16 +26,16 @@ std::string text(double value) {
 }
 
 void check_coefficient(double value, const char* name) {
-  IMUNOISE_CHECK(
-      std::isfinite(value) && value >= 0.0, InputError,
+  IMUNOISE_EXPECT(
+      std::isfinite(value) && value >= 0.0,
       std::string("model_psd: ") + name + " must be finite and >= 0 (got " + text(value) + ")");
 }
 
 void check_model(const NoiseCoefficients& model, double f_hz, double tau0_s) {
-  IMUNOISE_CHECK(std::isfinite(f_hz) && f_hz > 0.0, InputError,
-                 "model_psd: frequency must be finite and > 0 (got " + text(f_hz) + " Hz)");
-  IMUNOISE_CHECK(std::isfinite(tau0_s) && tau0_s > 0.0, InputError,
-                 "model_psd: tau0 must be finite and > 0 (got " + text(tau0_s) + " s)");
+  IMUNOISE_EXPECT(std::isfinite(f_hz) && f_hz > 0.0,
+                  "model_psd: frequency must be finite and > 0 (got " + text(f_hz) + " Hz)");
+  IMUNOISE_EXPECT(std::isfinite(tau0_s) && tau0_s > 0.0,
+                  "model_psd: tau0 must be finite and > 0 (got " + text(tau0_s) + " s)");
   check_coefficient(model.quantization, "quantization Q");
   check_coefficient(model.white_noise, "white_noise N");
   check_coefficient(model.bias_instability, "bias_instability B");
@@ -43,8 +43,8 @@ void check_model(const NoiseCoefficients& model, double f_hz, double tau0_s) {
   check_coefficient(model.ramp, "ramp R");
   for (const GaussMarkov& gm : model.gauss_markov) {
     check_coefficient(gm.sigma, "gauss_markov sigma");
-    IMUNOISE_CHECK(
-        std::isfinite(gm.tau_c_s) && gm.tau_c_s > 0.0, InputError,
+    IMUNOISE_EXPECT(
+        std::isfinite(gm.tau_c_s) && gm.tau_c_s > 0.0,
         "model_psd: gauss_markov tau_c_s must be finite and > 0 (got " + text(gm.tau_c_s) + " s)");
   }
 }
@@ -193,21 +193,21 @@ double model_psd_one_sided(const NoiseCoefficients& model, double f_hz, double t
 
 PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& model, double tau0_s,
                               double f_max_hz) {
-  IMUNOISE_CHECK(std::isfinite(tau0_s) && tau0_s > 0.0, InputError,
-                 "cross_check_psd: tau0 must be finite and > 0 (got " + text(tau0_s) + " s)");
-  IMUNOISE_CHECK(std::isfinite(f_max_hz), InputError,
-                 "cross_check_psd: f_max is not finite (" + text(f_max_hz) + ")");
-  IMUNOISE_CHECK(binned.frequency_hz.size() == binned.density.size() &&
-                     binned.frequency_hz.size() == binned.dof.size(),
-                 InputError, "cross_check_psd: frequency, density and dof sizes differ");
-  IMUNOISE_CHECK(binned.resolution_hz > 0.0, InputError,
-                 "cross_check_psd: spectrum resolution must be > 0 (got " +
-                     text(binned.resolution_hz) + " Hz)");
+  IMUNOISE_EXPECT(std::isfinite(tau0_s) && tau0_s > 0.0,
+                  "cross_check_psd: tau0 must be finite and > 0 (got " + text(tau0_s) + " s)");
+  IMUNOISE_EXPECT(std::isfinite(f_max_hz),
+                  "cross_check_psd: f_max is not finite (" + text(f_max_hz) + ")");
+  IMUNOISE_EXPECT(binned.frequency_hz.size() == binned.density.size() &&
+                      binned.frequency_hz.size() == binned.dof.size(),
+                  "cross_check_psd: frequency, density and dof sizes differ");
+  IMUNOISE_EXPECT(binned.resolution_hz > 0.0,
+                  "cross_check_psd: spectrum resolution must be > 0 (got " +
+                      text(binned.resolution_hz) + " Hz)");
   const bool has_ranges = binned.first_raw_bin.size() == binned.frequency_hz.size() &&
                           binned.raw_bins.size() == binned.frequency_hz.size();
   for (const Sinusoid& line : model.sinusoids) {
-    IMUNOISE_CHECK(std::isfinite(line.frequency_hz) && std::isfinite(line.amplitude), InputError,
-                   "cross_check_psd: sinusoid with a non-finite value");
+    IMUNOISE_EXPECT(std::isfinite(line.frequency_hz) && std::isfinite(line.amplitude),
+                    "cross_check_psd: sinusoid with a non-finite value");
   }
   const double res = binned.resolution_hz;
   const double f_low = 3.0 * res;
@@ -220,8 +220,8 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
     if (!(f >= f_low && f <= f_high)) continue;
     double lo = f, hi = f;
     if (has_ranges) {
-      IMUNOISE_CHECK(binned.raw_bins[i] > 0, InputError,
-                     "cross_check_psd: bin " + std::to_string(i) + " holds no raw bin");
+      IMUNOISE_EXPECT(binned.raw_bins[i] > 0,
+                      "cross_check_psd: bin " + std::to_string(i) + " holds no raw bin");
       lo = static_cast<double>(binned.first_raw_bin[i]) * res;
       hi = static_cast<double>(binned.first_raw_bin[i] + binned.raw_bins[i] - 1) * res;
     }
@@ -232,9 +232,8 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
         });
     if (has_line) continue;
     const double nu = binned.dof[i];
-    IMUNOISE_CHECK(
-        std::isfinite(nu) && nu > 0.0, InputError,
-        "cross_check_psd: dof of the bin at " + text(f) + " Hz must be > 0 (got " + text(nu) + ")");
+    IMUNOISE_EXPECT(std::isfinite(nu) && nu > 0.0, "cross_check_psd: dof of the bin at " + text(f) +
+                                                       " Hz must be > 0 (got " + text(nu) + ")");
     // The binned value is the mean of the raw bins: compare it with the model's mean over
     // the same raw frequencies (evaluating at the geometric centre would be 1–4 % low for
     // red terms, see log_bin()).
@@ -276,13 +275,13 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
 
 PsdReadoff psd_readoff(const Spectrum& binned) {
   const std::size_t n = binned.frequency_hz.size();
-  IMUNOISE_CHECK(n > 0, InputError, "psd_readoff: the spectrum is empty");
-  IMUNOISE_CHECK(binned.density.size() == n && binned.dof.size() == n, InputError,
-                 "psd_readoff: frequency, density and dof sizes differ");
-  IMUNOISE_CHECK(binned.resolution_hz > 0.0 && binned.segment_length > 0, InputError,
-                 "psd_readoff: resolution_hz and segment_length must be set (got " +
-                     text(binned.resolution_hz) + " Hz, " + std::to_string(binned.segment_length) +
-                     ")");
+  IMUNOISE_EXPECT(n > 0, "psd_readoff: the spectrum is empty");
+  IMUNOISE_EXPECT(binned.density.size() == n && binned.dof.size() == n,
+                  "psd_readoff: frequency, density and dof sizes differ");
+  IMUNOISE_EXPECT(binned.resolution_hz > 0.0 && binned.segment_length > 0,
+                  "psd_readoff: resolution_hz and segment_length must be set (got " +
+                      text(binned.resolution_hz) + " Hz, " + std::to_string(binned.segment_length) +
+                      ")");
   for (std::size_t i = 0; i < n; ++i) {
     const bool ok = std::isfinite(binned.frequency_hz[i]) && binned.frequency_hz[i] > 0.0 &&
                     std::isfinite(binned.density[i]) && binned.density[i] > 0.0 &&

@@ -30,8 +30,8 @@ struct PsdTerms {
 /// power A²/2 at their frequency and no density anywhere, so they are left out here.
 /// @param[in] f_hz frequency, > 0 [Hz]
 /// @param[in] tau0_s sample interval τ0, > 0 [s] (sets the Q term and its f_s/2 cut-off)
-/// @throws InputError for f or τ0 not positive and finite, a negative or non-finite
-/// coefficient, or a Gauss–Markov correlation time ≤ 0.
+/// @throws ContractViolation for f or τ0 not positive and finite, a negative or non-finite
+/// coefficient, or a Gauss–Markov correlation time ≤ 0 (fitted or read models are valid).
 PsdTerms model_psd_terms(const NoiseCoefficients& model, double f_hz, double tau0_s);
 
 /// Total S₁(f) of the model (PsdTerms::total() without allocating). Same rules and errors.
@@ -71,7 +71,7 @@ struct PsdCrossCheck {
 /// @param[in] tau0_s sample interval τ0 [s], > 0
 /// @param[in] f_max_hz upper end of the band [Hz], e.g. the sensor's low-pass; ≤ 0 selects
 ///            0.8·f_s/2, away from the anti-alias roll-off
-/// @throws InputError on bad arguments; AnalysisError when no bin falls in the band.
+/// @throws ContractViolation on bad arguments; AnalysisError when no bin falls in the band.
 PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& model, double tau0_s,
                               double f_max_hz = 0.0);
 
@@ -124,7 +124,8 @@ struct PsdReadoff {
 /// Limitation: white noise followed by a sensor low-pass falling as f⁻² looks the same.
 ///
 /// τ0 for Q is 1/(resolution_hz·segment_length).
-/// @throws InputError when the spectrum is empty, sizes differ, or a value is not positive.
+/// @throws ContractViolation when the spectrum is empty, its sizes differ or its resolution is
+///   not set; InputError when a bin's frequency, density or dof is not positive and finite.
 PsdReadoff psd_readoff(const Spectrum& binned);
 
 /// @}

@@ -63,9 +63,9 @@ SlopeReadoffTerm read_term(std::span<const double> tau, std::span<const double> 
 }  // namespace
 
 SlopeReadoff slope_readoff(std::span<const double> tau_s, std::span<const double> adev) {
-  IMUNOISE_CHECK(tau_s.size() == adev.size(), AnalysisError,
-                 "slope_readoff: " + std::to_string(tau_s.size()) + " tau values but " +
-                     std::to_string(adev.size()) + " deviations");
+  IMUNOISE_EXPECT(tau_s.size() == adev.size(), "slope_readoff: " + std::to_string(tau_s.size()) +
+                                                   " tau values but " +
+                                                   std::to_string(adev.size()) + " deviations");
   IMUNOISE_CHECK(
       tau_s.size() >= 3, AnalysisError,
       "slope_readoff: at least 3 points are needed (got " + std::to_string(tau_s.size()) + ")");
@@ -76,8 +76,8 @@ SlopeReadoff slope_readoff(std::span<const double> tau_s, std::span<const double
         "slope_readoff: point " + std::to_string(k) + " needs finite tau > 0 and " +
             "deviation > 0 (got tau " + std::to_string(tau_s[k]) + " s, deviation " +
             std::to_string(adev[k]) + ")");
-    IMUNOISE_CHECK(
-        k == 0 || tau_s[k] > tau_s[k - 1], AnalysisError,
+    IMUNOISE_EXPECT(
+        k == 0 || tau_s[k] > tau_s[k - 1],
         "slope_readoff: tau must be strictly increasing (point " + std::to_string(k) + ")");
   }
   const std::size_t n = tau_s.size();

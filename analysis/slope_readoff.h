@@ -38,7 +38,8 @@ inline constexpr double kSlopeTolerance = 0.1;
 /// which N and K lift: it overestimates B, §4.2).
 /// @param[in] tau_s averaging times [s], strictly increasing, > 0, at least 3
 /// @param[in] adev  ADEV at those τ [rate unit], > 0
-/// @throws AnalysisError on sizes that differ, fewer than 3 points, or values out of range.
+/// @throws AnalysisError on fewer than 3 points or values out of range (a curve the data gave);
+///   ContractViolation on sizes that differ or τ not increasing.
 SlopeReadoff slope_readoff(std::span<const double> tau_s, std::span<const double> adev);
 
 }  // namespace imunoise::analysis

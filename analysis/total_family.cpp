@@ -141,8 +141,7 @@ VarianceEstimate total_family_variance(TotalFamilyType type, std::span<const dou
                                        std::int64_t m, double tau0_s, bool bias_corrected,
                                        int alpha) {
   const std::string where = std::string("total_family_variance(") + name_of(type) + "): ";
-  IMUNOISE_CHECK(m >= 1, AnalysisError,
-                 where + "averaging factor must be >= 1, got " + std::to_string(m));
+  IMUNOISE_EXPECT(m >= 1, where + "averaging factor must be >= 1, got " + std::to_string(m));
   detail::check_sample_period(tau0_s, where);
   const auto n_phase = static_cast<std::int64_t>(phase.size());
   const std::int64_t terms = total_family_term_count(type, n_phase, m);

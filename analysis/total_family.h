@@ -56,14 +56,14 @@ enum class TotalFamilyType {
 /// @param[in] tau0_s  sample spacing τ0 > 0 [s]
 /// @param[in] bias_corrected apply the bias correction for alpha
 /// @param[in] alpha   noise type for the correction: −2 … 2 (MTOT, TTOT), −4 … 2 (HTOT)
-/// @throws AnalysisError for m < 1, a record too short for one term, τ0 ≤ 0, or an alpha
-///         outside the table when bias_corrected.
-/// The total-family member of a DeviationType (mtotdev, ttotdev, htotdev); nullopt otherwise.
-std::optional<TotalFamilyType> total_family_type(DeviationType type);
-
+/// @throws AnalysisError for a record too short for one term or an alpha outside the table
+///         when bias_corrected; ContractViolation for m < 1 or τ0 ≤ 0.
 VarianceEstimate total_family_variance(TotalFamilyType type, std::span<const double> phase,
                                        std::int64_t m, double tau0_s, bool bias_corrected = false,
                                        int alpha = 0);
+
+/// The total-family member of a DeviationType (mtotdev, ttotdev, htotdev); nullopt otherwise.
+std::optional<TotalFamilyType> total_family_type(DeviationType type);
 
 /// Number of terms (runs) in the estimator, Stable32's "#" column: M − 3m + 1 for MTOT and
 /// TTOT, M − 3m for HTOT (N − 3m + 1 frequency runs; at m = 1 the M − 3 overlapping Hadamard

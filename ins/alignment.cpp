@@ -81,7 +81,7 @@ Alignment coarse_alignment(const AlignmentInput& input) {
                  "coarse_alignment: gyrocompassing is not possible (predicted heading sigma " +
                      rounded_text(gyrocompass_sigma / kDeg, 2) + " deg > " +
                      rounded_text(input.max_gyrocompass_heading_sigma_rad / kDeg, 2) +
-                     " deg: " + why + "); give the heading with --heading DEG");
+                     " deg: " + why + "); give the heading with " + input.heading_setting);
 
   // Levelling in the plumb-line frame p, in which the mean specific force is [0, 0, −|f̄|].
   const double roll_p = std::atan2(-f.y(), -f.z());

@@ -27,6 +27,9 @@ struct AlignmentInput {
   double gyro_bias_sigma_rad_per_s = 0.0;
   /// Gyrocompassing is possible when its predicted heading σ is at most this [rad].
   double max_gyrocompass_heading_sigma_rad = 5.0 * units::kDeg;
+  /// How the refusal to gyrocompass names the way to give the heading ("give the heading with
+  /// …"); the CLI passes its flag, "--heading DEG".
+  std::string heading_setting = "given_heading_rad";
 };
 
 struct Alignment {
@@ -57,7 +60,8 @@ struct Alignment {
 /// Errors: tilt ≈ b_a/g, gyrocompass heading ≈ −b_g,E/(Ω_ie cos L).
 /// @throws InputError when f̄ is not finite or |f̄| < 1 m/s², ω̄ or h is not finite, L is not
 /// finite or |L| ≥ 89.9°, a σ is negative or not finite, the given heading is not finite, or
-/// gyrocompassing is not possible and no heading is given (the message names --heading DEG).
+/// gyrocompassing is not possible and no heading is given (the message names
+/// input.heading_setting).
 Alignment coarse_alignment(const AlignmentInput& input);
 
 }  // namespace imunoise::ins

@@ -37,6 +37,7 @@ InsSensorNoise ins_sensor_noise(const models::NoiseModel& model, const InsNoiseO
   select.conservative = options.conservative;
   select.gm_convention = options.gm_convention;
   select.filter_rate_hz = model.sample_rate_hz;
+  select.setting_names = options.setting_names;
   const models::FilterParameters params = models::select_filter_parameters(model, select);
   InsSensorNoise noise;
   for (int i = 0; i < 3; ++i) {

@@ -6,6 +6,7 @@
 
 #include "ins/error_state_model.h"
 #include "models/bias_instability_gm.h"
+#include "models/filter_parameters.h"
 #include "models/noise_model.h"
 
 namespace imunoise::ins {
@@ -17,6 +18,8 @@ struct InsNoiseOptions {
   bool conservative = false;
   /// Which single GM stands for B (theory.md §4.4 (a)–(c)).
   models::GmConvention gm_convention = models::GmConvention::peak_match;
+  /// The names select_filter_parameters()'s messages give the settings (the CLI: its flags).
+  models::FilterSettingNames setting_names;
 };
 
 /// Per body axis x, y, z of the gyro and the accelerometer: white_noise = N,

@@ -63,8 +63,9 @@ StrapdownNavigator::StrapdownNavigator(const NavState& initial, const Mechanizat
 
 void StrapdownNavigator::update(const ImuIncrement& increment) {
   const double dt = increment.dt_s;
-  IMUNOISE_CHECK(
-      std::isfinite(dt) && dt > 0.0, InputError,
+  // Δt is the recording's sample period, which the drift analysis checked (make_grid).
+  IMUNOISE_EXPECT(
+      std::isfinite(dt) && dt > 0.0,
       "StrapdownNavigator::update: dt must be finite and > 0 (got " + std::to_string(dt) + " s)");
   IMUNOISE_CHECK(increment.dtheta_b_rad.allFinite() && increment.dv_b_m_per_s.allFinite(),
                  InputError, "StrapdownNavigator::update: increment must be finite");

@@ -60,7 +60,8 @@ class StrapdownNavigator {
   StrapdownNavigator(const NavState& initial, const MechanizationOptions& options);
 
   /// Advances the state by one IMU sample.
-  /// @throws InputError when dt ≤ 0 or an increment is not finite; the state is then unchanged.
+  /// @throws InputError when an increment is not finite, ContractViolation when dt ≤ 0 or not
+  ///   finite; the state is then unchanged.
   void update(const ImuIncrement& increment);
 
   const NavState& state() const { return state_; }

@@ -57,14 +57,16 @@ GaussMarkovPeak gauss_markov_adev_peak() {
 GaussMarkov gauss_markov_from_bias_instability(double bias_instability, double tau_min_s,
                                                GmConvention convention,
                                                std::optional<double> min_adev) {
-  IMUNOISE_CHECK(std::isfinite(bias_instability) && bias_instability >= 0.0, InputError,
-                 "gauss_markov_from_bias_instability: B must be finite and >= 0 (got " +
-                     std::to_string(bias_instability) + ")");
-  IMUNOISE_CHECK(std::isfinite(tau_min_s) && tau_min_s > 0.0, InputError,
-                 "gauss_markov_from_bias_instability: tau_min must be finite and > 0 s (got " +
-                     std::to_string(tau_min_s) + ")");
-  IMUNOISE_CHECK(!min_adev || (std::isfinite(*min_adev) && *min_adev > 0.0), InputError,
-                 "gauss_markov_from_bias_instability: min_adev must be finite and > 0");
+  // The callers pass a fitted model's values or a model.yaml's, which the reader checked;
+  // a model without τ of the ADEV minimum is refused by the caller (filter_parameters).
+  IMUNOISE_EXPECT(std::isfinite(bias_instability) && bias_instability >= 0.0,
+                  "gauss_markov_from_bias_instability: B must be finite and >= 0 (got " +
+                      std::to_string(bias_instability) + ")");
+  IMUNOISE_EXPECT(std::isfinite(tau_min_s) && tau_min_s > 0.0,
+                  "gauss_markov_from_bias_instability: tau_min must be finite and > 0 s (got " +
+                      std::to_string(tau_min_s) + ")");
+  IMUNOISE_EXPECT(!min_adev || (std::isfinite(*min_adev) && *min_adev > 0.0),
+                  "gauss_markov_from_bias_instability: min_adev must be finite and > 0");
   // ADEV of a pure bias-instability floor: √(2 ln2/π)·B = 0.6643·B (theory.md §4.1).
   const double floor = std::sqrt(2.0 * std::numbers::ln2 / std::numbers::pi) * bias_instability;
   switch (convention) {

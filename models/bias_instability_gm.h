@@ -39,7 +39,7 @@ GaussMarkovPeak gauss_markov_adev_peak();
 ///                             table uses it (8.661e-5 rad/s: the floor lifted by N and K);
 ///                             without it (a) takes the pure-floor value √(2 ln2/π)·B.
 /// @return σ_GM and T_c; the driving intensity is q_c² = 2σ²/T_c.
-/// @throws InputError when B < 0, τ_min ≤ 0, min_adev ≤ 0 or any is not finite.
+/// @throws ContractViolation when B < 0, τ_min ≤ 0, min_adev ≤ 0 or any is not finite.
 GaussMarkov gauss_markov_from_bias_instability(double bias_instability, double tau_min_s,
                                                GmConvention convention,
                                                std::optional<double> min_adev = std::nullopt);

@@ -64,8 +64,8 @@ SensorAxisParameters one_axis(const AxisModel& axis, const FilterParameterOption
   double t = o.correction_interval_s > 0.0 ? o.correction_interval_s : axis.tau_min_adev_s;
   if (c.bias_instability > 0.0 && !(t > 0.0))
     throw InputError(axis.name +
-                     ": the conservative fold of bias instability needs a correction interval "
-                     "(--correction-interval) or fit.tau_of_min_adev_s > 0");
+                     ": the conservative fold of bias instability needs a correction interval (" +
+                     o.setting_names.correction_interval + ") or fit.tau_of_min_adev_s > 0");
   if (!(t > 0.0)) t = 1.0;  // no B: T only decides where a GM is folded
   if (c.ramp > 0.0 && !(axis.fit_tau_max_s > 0.0))
     throw InputError(axis.name + ": the conservative fold of the ramp needs fit.tau_max_s > 0");
@@ -145,12 +145,13 @@ std::optional<SensorParameters> sensor_parameters(const NoiseModel& model, bool 
     const auto it = std::find_if(axes.begin(), axes.end(),
                                  [&](const AxisModel* a) { return ends_with(a->name, suffix); });
     if (it == axes.end())
-      throw InputError("the model has no " + sensor + " axis named *" + suffix + " (--axis)");
+      throw InputError("the model has no " + sensor + " axis named *" + suffix + " (" +
+                       o.setting_names.axis + ")");
     axes = {*it};
   }
   if (o.axis == AxisChoice::each && axes.size() != 3)
-    throw InputError("--axis each needs three " + sensor + " axes; the model has " +
-                     std::to_string(axes.size()));
+    throw InputError(o.setting_names.axis + " each needs three " + sensor +
+                     " axes; the model has " + std::to_string(axes.size()));
   std::vector<SensorAxisParameters> per_axis;
   for (const AxisModel* a : axes) per_axis.push_back(one_axis(*a, o));
   auto out = combine(per_axis, gyro,
@@ -168,13 +169,14 @@ std::optional<SensorParameters> sensor_parameters(const NoiseModel& model, bool 
 
 RandomWalkFold fold_into_random_walk(const NoiseCoefficients& c, double correction_interval_s,
                                      double filter_rate_hz, double horizon_s) {
-  if (!(correction_interval_s > 0.0) || !std::isfinite(correction_interval_s))
-    throw InputError("fold_into_random_walk: correction interval must be > 0, got " +
-                     shortest_number_text(correction_interval_s));
-  if (c.quantization > 0.0 && !(filter_rate_hz > 0.0))
-    throw InputError("fold_into_random_walk: the quantization fold needs a rate > 0");
-  if (c.ramp > 0.0 && !(horizon_s > 0.0))
-    throw InputError("fold_into_random_walk: the ramp fold needs a horizon > 0");
+  // one_axis() has refused a model or options without them (InputError naming the model key).
+  IMUNOISE_EXPECT(correction_interval_s > 0.0 && std::isfinite(correction_interval_s),
+                  "fold_into_random_walk: correction interval must be > 0, got " +
+                      shortest_number_text(correction_interval_s));
+  IMUNOISE_EXPECT(!(c.quantization > 0.0) || filter_rate_hz > 0.0,
+                  "fold_into_random_walk: the quantization fold needs a rate > 0");
+  IMUNOISE_EXPECT(!(c.ramp > 0.0) || horizon_s > 0.0,
+                  "fold_into_random_walk: the ramp fold needs a horizon > 0");
   const double t = correction_interval_s;
   double n2 = c.white_noise * c.white_noise;
   double k2 = c.random_walk * c.random_walk;
@@ -219,7 +221,8 @@ FilterParameters select_filter_parameters(const NoiseModel& model,
         " [+ 2 sigma^2 T_c per GM with T_c <= T], K'^2 = K^2 + 3 (2 ln2/pi) B^2 / T"
         " + 1.5 R^2 T_h [+ 2 sigma^2 / T_c per GM with T_c > T]; T = " +
         (options.correction_interval_s > 0.0
-             ? shortest_number_text(options.correction_interval_s) + " s (--correction-interval)"
+             ? shortest_number_text(options.correction_interval_s) + " s (" +
+                   options.setting_names.correction_interval + ")"
              : std::string("each axis's tau of the ADEV minimum")) +
         ", T_h = longest fitted tau; the exported AVAR N'^2/tau + K'^2 tau/3 is >= the "
         "model's for 1/rate <= tau <= T_h");

@@ -28,6 +28,13 @@ enum class AxisChoice {
   each  ///< every axis its own value (for formats with per-axis slots)
 };
 
+/// How the messages and the rule lines of select_filter_parameters() name the settings a caller
+/// offers its user. The defaults name the options; the CLI passes its flags.
+struct FilterSettingNames {
+  std::string axis = "axis";                                  ///< `export --axis`
+  std::string correction_interval = "correction_interval_s";  ///< `export --correction-interval`
+};
+
 struct FilterParameterOptions {
   AxisChoice axis = AxisChoice::worst;
   /// false: point estimates. true: the upper end of each coefficient's interval (for terms
@@ -41,6 +48,7 @@ struct FilterParameterOptions {
   double correction_interval_s = 0.0;
   /// The rate the filter runs at [Hz], > 0: bounds the quantization fold (τ ≥ 1/rate).
   double filter_rate_hz = 0.0;
+  FilterSettingNames setting_names;  ///< the names messages and rule lines give axis and T
 };
 
 /// The numbers of one axis slot of one sensor (SI: rad… for a gyro, m/s… for an accel).
@@ -75,7 +83,8 @@ SensorAxisParameters axis_filter_parameters(const AxisModel& axis,
 
 /// The parameters of MODEL under OPTIONS.
 /// @throws InputError when OPTIONS asks for an axis the model lacks, the GM conversion of B
-///   needs τ of the ADEV minimum and the model has none, or filter_rate_hz ≤ 0.
+///   needs τ of the ADEV minimum and the model has none, or filter_rate_hz ≤ 0 (the model's
+///   sample rate or the user's).
 FilterParameters select_filter_parameters(const NoiseModel& model,
                                           const FilterParameterOptions& options);
 
@@ -88,6 +97,8 @@ FilterParameters select_filter_parameters(const NoiseModel& model,
 ///   Q:  3Q²/τ² ≤ 3Q²·rate/τ for τ ≥ 1/rate → N'² += 3Q²·rate;
 ///   R:  R²τ²/2 ≤ (R²·T_h/2)τ for τ ≤ T_h → K'² += 1.5·R²·T_h (T_h = longest fitted τ).
 /// Sinusoids are not folded (they are deterministic; the PSD shows them).
+/// @throws ContractViolation unless correction_interval_s > 0, filter_rate_hz > 0 when Q > 0
+///   and horizon_s > 0 when R > 0.
 struct RandomWalkFold {
   double white_noise = 0.0, random_walk = 0.0;
 };

@@ -7,7 +7,6 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -452,9 +451,8 @@ ImuSimulator::ImuSimulator(const ImuNoiseModel& model, const SimulationOptions& 
 
 void ImuSimulator::next_block(const std::array<std::span<double>, kImuChannels>& out) {
   for (std::size_t c = 0; c < kImuChannels; ++c) {
-    if (out[c].size() != out[0].size()) {
-      throw std::invalid_argument("ImuSimulator::next_block: channel blocks differ in size");
-    }
+    IMUNOISE_EXPECT(out[c].size() == out[0].size(),
+                    "ImuSimulator::next_block: channel blocks differ in size");
   }
   for (std::size_t c = 0; c < kImuChannels; ++c) channels_[c].next_block(out[c]);
 }

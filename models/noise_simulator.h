@@ -233,7 +233,8 @@ class ImuSimulator {
  public:
   ImuSimulator(const ImuNoiseModel& model, const SimulationOptions& options);
 
-  /// Fills the next block of every channel; all six spans must have the same size.
+  /// Fills the next block of every channel; all six spans must have the same size
+  /// (ContractViolation otherwise).
   void next_block(const std::array<std::span<double>, kImuChannels>& out);
 
   /// Number of samples produced so far per channel.

@@ -20,9 +20,9 @@ namespace imunoise::models {
 namespace {
 
 void check_alpha(int alpha, const char* where) {
-  IMUNOISE_CHECK(alpha >= -2 && alpha <= 2, InputError,
-                 std::string(where) + ": alpha must be one of 2, 1, 0, -1, -2 (got " +
-                     std::to_string(alpha) + ")");
+  IMUNOISE_EXPECT(alpha >= -2 && alpha <= 2, std::string(where) +
+                                                 ": alpha must be one of 2, 1, 0, -1, -2 (got " +
+                                                 std::to_string(alpha) + ")");
 }
 
 /// Below this length the O(n²) direct convolution is cheaper than planning FFTs.
@@ -99,8 +99,8 @@ std::vector<double> kasdin_walter_coefficients(int alpha, std::size_t n) {
 
 std::vector<double> power_law_noise(int alpha, std::size_t n, std::uint64_t seed, double h) {
   check_alpha(alpha, "power_law_noise");
-  IMUNOISE_CHECK(std::isfinite(h) && h >= 0.0, InputError,
-                 "power_law_noise: h must be finite and >= 0 (got " + std::to_string(h) + ")");
+  IMUNOISE_EXPECT(std::isfinite(h) && h >= 0.0,
+                  "power_law_noise: h must be finite and >= 0 (got " + std::to_string(h) + ")");
   // Two-sided discrete PSD of the filtered noise is var(w)·|2 sin πf|^alpha → var(w)(2πf)^alpha
   // at low f (τ0 = 1); one-sided S_y = h·f^alpha then needs var(w) = h / (2 (2π)^alpha).
   const double sigma =

@@ -16,7 +16,7 @@ namespace imunoise::models {
 /// 2 a first difference.
 /// @param[in] alpha exponent of S_y(f), one of 2, 1, 0, −1, −2
 /// @param[in] n     number of coefficients
-/// @throws InputError for another alpha.
+/// @throws ContractViolation for another alpha.
 std::vector<double> kasdin_walter_coefficients(int alpha, std::size_t n);
 
 /// n samples y_k of fractional-frequency noise with one-sided PSD S_y(f) = h·f^alpha at low
@@ -31,7 +31,7 @@ std::vector<double> kasdin_walter_coefficients(int alpha, std::size_t n);
 /// @param[in] n     number of samples
 /// @param[in] seed  random seed
 /// @param[in] h     PSD coefficient h_alpha ≥ 0 (unit: y² · τ0^{1+alpha})
-/// @throws InputError for alpha outside {2, 1, 0, −1, −2} or h negative / not finite.
+/// @throws ContractViolation for alpha outside {2, 1, 0, −1, −2} or h negative / not finite.
 std::vector<double> power_law_noise(int alpha, std::size_t n, std::uint64_t seed, double h = 1.0);
 
 }  // namespace imunoise::models

@@ -6,11 +6,12 @@
 #include <cmath>
 #include <cstddef>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <utility>
 #include <vector>
+
+#include "common/errors.h"
 
 namespace imunoise::models {
 namespace {
@@ -26,9 +27,9 @@ std::string show(double value) {
   return out.str();
 }
 
-/// Throws std::invalid_argument("WHERE: WHAT (got VALUE)") unless `ok`.
+/// Throws ContractViolation("WHERE: WHAT (got VALUE)") unless `ok`.
 void require(bool ok, const std::string& where, const std::string& what, double value) {
-  if (!ok) throw std::invalid_argument(where + ": " + what + " (got " + show(value) + ")");
+  if (!ok) throw ContractViolation(where + ": " + what + " (got " + show(value) + ")");
 }
 
 void require_non_negative(double value, const std::string& where, const std::string& what) {
@@ -41,7 +42,7 @@ void require_positive(double value, const std::string& where, const std::string&
 
 void require_step(double dt_s, const std::string& where) { require_positive(dt_s, where, "dt"); }
 
-/// Throws std::invalid_argument unless F is n×n, G is n×p, Q_c is p×p, all entries are
+/// Throws ContractViolation unless F is n×n, G is n×p, Q_c is p×p, all entries are
 /// finite, and the labels (when present) and P₀ have the matching sizes. `names_required`:
 /// block_diagonal() concatenates labels and P₀, so there they must be complete; discretize()
 /// only copies the state labels and accepts a model without any.
@@ -54,7 +55,7 @@ void check_model(const ContinuousStateModel& m, const std::string& where, bool n
         << m.G.rows() << "x" << m.G.cols() << ", Qc " << m.Qc.rows() << "x" << m.Qc.cols()
         << ", initial_variance " << m.initial_variance.size() << ", state_names "
         << m.state_names.size() << ", noise_names " << m.noise_names.size() << ")";
-    throw std::invalid_argument(out.str());
+    throw ContractViolation(out.str());
   };
   if (m.F.cols() != n) fail("F must be square");
   if (m.G.rows() != n) fail("G must have as many rows as F");
@@ -227,8 +228,8 @@ DiscreteStateModel discretize(const ContinuousStateModel& model, double dt_s) {
   Eigen::MatrixXd W = model.G * model.Qc * model.G.transpose();
   W = 0.5 * (W + W.transpose()).eval();
   if (!W.allFinite()) {
-    throw std::invalid_argument("discretize: G Qc G^T overflows (max |Qc| " +
-                                show(model.Qc.cwiseAbs().maxCoeff()) + ")");
+    throw ContractViolation("discretize: G Qc G^T overflows (max |Qc| " +
+                            show(model.Qc.cwiseAbs().maxCoeff()) + ")");
   }
   const double w_scale = W.cwiseAbs().colwise().sum().maxCoeff();
   if (w_scale > 0.0) W /= w_scale;

@@ -37,7 +37,7 @@ struct DiscreteStateModel {
 /// Labels are NAME plus a fixed suffix (NAME is used verbatim, so put a unit in it if wanted):
 /// the states are listed per function, and every driving noise is NAME + "_driving_noise"
 /// (angle_bias_state: NAME + "_angle_white_noise", NAME + "_bias_driving_noise").
-/// @throws std::invalid_argument "FUNCTION: WHAT must be finite and >= 0 (got VALUE)" for a
+/// @throws ContractViolation "FUNCTION: WHAT must be finite and >= 0 (got VALUE)" for a
 /// negative or non-finite coefficient, "... > 0 ..." for T_c, ω_n or ζ ≤ 0.
 /// @{
 
@@ -67,7 +67,7 @@ ContinuousStateModel angle_bias_state(double white_noise, double random_walk,
 
 /// Block-diagonal assembly (states and noises concatenated in order); an empty span gives a
 /// model with 0 states.
-/// @throws std::invalid_argument when a block's F, G, Q_c, P₀ or labels disagree in size, or
+/// @throws ContractViolation when a block's F, G, Q_c, P₀ or labels disagree in size, or
 /// F, G, Q_c hold a non-finite entry ("block_diagonal: block I: ...").
 ContinuousStateModel block_diagonal(std::span<const ContinuousStateModel> blocks);
 
@@ -82,7 +82,7 @@ ContinuousStateModel block_diagonal(std::span<const ContinuousStateModel> blocks
 /// here, Φ can still overflow when the exact e^{FΔt} does.) Q_d is symmetrized. `method` is
 /// "van loan" for k = 0, else "van loan, 2^k substeps" with k as a number. A 0-state model
 /// gives 0×0 matrices. state_names may be empty (then copied empty).
-/// @throws std::invalid_argument when Δt ≤ 0 or not finite, when the matrices disagree in
+/// @throws ContractViolation when Δt ≤ 0 or not finite, when the matrices disagree in
 /// size or hold a non-finite entry, or when G Q_c Gᵀ overflows.
 DiscreteStateModel discretize(const ContinuousStateModel& model, double dt_s);
 
@@ -90,7 +90,7 @@ DiscreteStateModel discretize(const ContinuousStateModel& model, double dt_s);
 /// Q_d = σ²(1 − e^{−2Δt/T_c}) (computed with expm1 so it stays accurate for Δt ≪ T_c);
 /// [θ, b] Φ = [[1,Δt],[0,1]], Q_d = [[N²Δt + K²Δt³/3, K²Δt²/2],[K²Δt²/2, K²Δt]].
 /// Labels and validation as the continuous constructors; method "closed form".
-/// @throws std::invalid_argument for Δt ≤ 0 or not finite, or a bad coefficient.
+/// @throws ContractViolation for Δt ≤ 0 or not finite, or a bad coefficient.
 DiscreteStateModel random_walk_discrete(double random_walk, double dt_s, const std::string& name);
 DiscreteStateModel gauss_markov_discrete(double sigma, double tau_c_s, double dt_s,
                                          const std::string& name);
@@ -99,7 +99,7 @@ DiscreteStateModel angle_bias_discrete(double white_noise, double random_walk, d
 
 /// Per-sample σ of white noise of density N for a filter that consumes rates: N/√Δt; and
 /// the per-step σ of the angle (or velocity) increment: N·√Δt (theory.md §6.2).
-/// @throws std::invalid_argument for N < 0, Δt ≤ 0 or either not finite.
+/// @throws ContractViolation for N < 0, Δt ≤ 0 or either not finite.
 double white_noise_rate_sigma(double white_noise, double dt_s);
 double white_noise_increment_sigma(double white_noise, double dt_s);
 

@@ -176,7 +176,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
 AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
                                  std::span<const std::span<const double>> pieces, double tau0_s,
                                  int axis_index, const AxisAnalysisOptions& options) {
-  IMUNOISE_CHECK(!pieces.empty(), InputError, name + ": no samples to analyse");
+  IMUNOISE_EXPECT(!pieces.empty(), name + ": no samples to analyse");
   check_rate_samples(name, pieces);
   std::int64_t total_samples = 0;
   for (const auto& piece : pieces) total_samples += static_cast<std::int64_t>(piece.size());
@@ -350,7 +350,8 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
   }
   if (!model.gauss_markov.empty() && gm_sigma.empty()) {
     model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") +
-                      "Gauss-Markov intervals need the bootstrap (--bootstrap N)";
+                      "Gauss-Markov intervals need the bootstrap (" + options.bootstrap_setting +
+                      ")";
   }
   for (const Sinusoid& s : out.fit.coefficients.sinusoids) model.sinusoids.push_back(s);
 

@@ -33,6 +33,9 @@ struct AxisAnalysisOptions {
   int bootstrap_replicates = 50;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
   std::uint64_t seed = 1;         ///< bootstrap master seed (axis index is mixed in)
   unsigned threads = 1;           ///< threads for this axis (deviation τ and bootstrap)
+  /// How the fit note names the way to ask for the bootstrap ("Gauss-Markov intervals need the
+  /// bootstrap (…)"); the CLI passes its flag, "--bootstrap N".
+  std::string bootstrap_setting = "bootstrap_replicates >= 2";
   /// Optional progress of one axis, in units of 4 + bootstrap_replicates (0 without the
   /// bootstrap): OADEV, OHDEV, fit, PSD, then one per replicate. The stage named is the one
   /// now running: "deviations", "fit", "PSD", "bootstrap" or "intervals", and "done" at the
@@ -64,7 +67,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
 /// by the term counts, EDF summed), the Welch PSD pooled over pieces at one segment length
 /// (analysis::pooled_welch_psd), then the fit on the pooled curves as usual. The bootstrap
 /// simulates one record of the total length — an approximation the fit note states. One
-/// piece is exactly analyze_axis.
+/// piece is exactly analyze_axis. PIECES must not be empty (ContractViolation).
 AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
                                  std::span<const std::span<const double>> pieces, double tau0_s,
                                  int axis_index, const AxisAnalysisOptions& options);

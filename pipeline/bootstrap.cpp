@@ -60,11 +60,11 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               std::span<const std::int64_t> m_list, std::int64_t n_samples,
                               double tau0_s, const analysis::FitOptions& fit_options,
                               const BootstrapOptions& options) {
-  if (points.size() != m_list.size()) {
-    throw ContractViolation("bootstrap_fit: points and m_list differ in size");
-  }
-  if (options.replicates < 2) throw InputError("bootstrap: need at least 2 replicates");
-  if (n_samples < 2 || !(tau0_s > 0.0)) throw InputError("bootstrap: empty record");
+  IMUNOISE_EXPECT(points.size() == m_list.size(),
+                  "bootstrap_fit: points and m_list differ in size");
+  // `analyze --bootstrap` is checked by the CLI; the axis analysis runs it with >= 2 only.
+  IMUNOISE_EXPECT(options.replicates >= 2, "bootstrap: need at least 2 replicates");
+  IMUNOISE_EXPECT(n_samples >= 2 && tau0_s > 0.0, "bootstrap: empty record");
 
   models::ChannelNoiseModel channel = models::channel_model_from(fit.coefficients);
   const double duration_s = static_cast<double>(n_samples) * tau0_s;

@@ -50,6 +50,8 @@ struct BootstrapResult {
 /// of an identified term is the bias-corrected normal interval of ln θ (a scale parameter's
 /// error is multiplicative) with Student's t for the replicate count, or the same in the
 /// linear domain clipped at 0 when a replicate is 0.
+/// @throws AnalysisError when fewer than 2 replicates could be fitted; ContractViolation when
+///   POINTS and M_LIST differ in size, options.replicates < 2, N_SAMPLES < 2 or τ0 ≤ 0.
 BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               std::span<const analysis::FitPoint> points,
                               std::span<const std::int64_t> m_list, std::int64_t n_samples,

@@ -76,6 +76,7 @@ SegmentRun run_segment(const ImuSeries& s, std::size_t first, std::size_t n_alig
   input.height_m = o.height_m;
   input.given_heading_rad = o.heading_rad;
   input.given_heading_sigma_rad = o.heading_sigma_rad;
+  input.heading_setting = o.heading_setting;
   input.gyro_bias_sigma_rad_per_s = gyro_sigma;
   run.alignment = ins::coarse_alignment(input);
 

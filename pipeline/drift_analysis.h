@@ -41,6 +41,9 @@ struct DriftOptions {
   /// Heading [rad] from outside; without it each segment gyrocompasses, which needs a gyro
   /// good enough (ins::coarse_alignment decides and says why).
   std::optional<double> heading_rad;
+  /// How an alignment that cannot gyrocompass names the way to give the heading
+  /// (ins::AlignmentInput::heading_setting); the CLI passes its flag, "--heading DEG".
+  std::string heading_setting = "heading_rad";
   double heading_sigma_rad = 0.0;  ///< 1σ of the given heading [rad]
   double align_s = 60.0;           ///< alignment window T_a [s]
   double navigation_s = 600.0;     ///< free-inertial time after it [s]

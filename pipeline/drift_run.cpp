@@ -35,6 +35,7 @@ DriftOptions drift_options(const DriftRunOptions& o, const ProgressCallback& pro
   d.height_m = o.location.height_m;
   d.heading_rad = o.heading_rad;
   d.heading_sigma_rad = o.heading_sigma_rad;
+  d.heading_setting = o.heading_setting;
   d.align_s = o.align_s;
   d.navigation_s = o.navigation_s;
   d.warmup_s = o.warmup_s;

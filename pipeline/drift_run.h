@@ -35,6 +35,8 @@ struct DriftRunOptions {
   DriftLocation location;
   /// Heading of the IMU's x axis from north [rad]; without it each segment gyrocompasses.
   std::optional<double> heading_rad;
+  /// The name of the heading setting in messages (DriftOptions::heading_setting).
+  std::string heading_setting = "heading_rad";
   double heading_sigma_rad = 0.0;  ///< 1σ of the given heading [rad]
   double align_s = 60.0;           ///< alignment window per segment [s]
   double navigation_s = 600.0;     ///< free-inertial time per segment [s]

@@ -10,19 +10,30 @@
 
 namespace imunoise::pipeline {
 
-GapPolicy parse_gap_policy(std::string_view text) {
+namespace {
+
+/// "SETTING POLICY", e.g. "--gaps split".
+std::string setting_with(std::string_view setting, std::string_view policy) {
+  std::string out(setting);
+  out.append(" ").append(policy);
+  return out;
+}
+
+}  // namespace
+
+GapPolicy parse_gap_policy(std::string_view text, std::string_view setting) {
   if (text == "refuse") return GapPolicy::refuse;
   if (text == "split") return GapPolicy::split;
   if (text == "interpolate") return GapPolicy::interpolate;
-  std::string message = "--gaps: expected refuse, split or interpolate, got '";
-  message.append(text).append("'");
+  std::string message(setting);
+  message.append(": expected refuse, split or interpolate, got '").append(text).append("'");
   throw InputError(message);
 }
 
 std::vector<TimeGap> find_time_gaps(std::span<const double> time_s, double period_s,
                                     double gap_factor) {
-  IMUNOISE_CHECK(period_s > 0.0 && std::isfinite(period_s), InputError,
-                 "find_time_gaps: the sample period must be positive");
+  IMUNOISE_EXPECT(period_s > 0.0 && std::isfinite(period_s),
+                  "find_time_gaps: the sample period must be positive");
   std::vector<TimeGap> gaps;
   const double limit = gap_factor * period_s;
   for (std::size_t i = 1; i < time_s.size(); ++i) {
@@ -47,8 +58,8 @@ GapSplit split_at_gaps(std::size_t n, std::span<const TimeGap> gaps, std::size_t
     begin = end;
   };
   for (const TimeGap& g : gaps) {
-    IMUNOISE_CHECK(g.after > begin && g.after < n, InputError,
-                   "split_at_gaps: gaps must be in time order inside the record");
+    IMUNOISE_EXPECT(g.after > begin && g.after < n,
+                    "split_at_gaps: gaps must be in time order inside the record");
     close(g.after);
   }
   close(n);
@@ -68,8 +79,8 @@ std::vector<double> interpolate_gaps(std::span<const double> values,
   out.reserve(values.size() + static_cast<std::size_t>(added));
   std::size_t next = 0;  // first sample of VALUES not yet copied
   for (const TimeGap& g : gaps) {
-    IMUNOISE_CHECK(g.after >= 1 && g.after < values.size() && g.after >= next, InputError,
-                   "interpolate_gaps: gaps must be in time order inside the record");
+    IMUNOISE_EXPECT(g.after >= 1 && g.after < values.size() && g.after >= next,
+                    "interpolate_gaps: gaps must be in time order inside the record");
     out.insert(out.end(), values.begin() + static_cast<std::ptrdiff_t>(next),
                values.begin() + static_cast<std::ptrdiff_t>(g.after));
     const double a = values[g.after - 1];
@@ -88,7 +99,8 @@ std::vector<double> interpolate_gaps(std::span<const double> values,
   return out;
 }
 
-std::string gap_refusal_message(const std::string& source, const TimingReport& timing) {
+std::string gap_refusal_message(const std::string& source, const TimingReport& timing,
+                                std::string_view setting) {
   if (timing.gap_count <= 0) return {};
   std::string what = std::to_string(timing.gap_count) + " time-stamp gap(s)";
   if (timing.first_gap) {
@@ -105,17 +117,18 @@ std::string gap_refusal_message(const std::string& source, const TimingReport& t
       .append(significant_number_text(timing.longest_gap_s))
       .append(" s, about ")
       .append(std::to_string(timing.missing_samples))
-      .append(
-          " samples missing; the analysis needs uniformly spaced samples: use --gaps split "
-          "(pool the gap-free pieces) or --gaps interpolate (fill linearly), or fix the "
-          "recording");
+      .append(" samples missing; the analysis needs uniformly spaced samples: use ")
+      .append(setting_with(setting, "split"))
+      .append(" (pool the gap-free pieces) or ")
+      .append(setting_with(setting, "interpolate"))
+      .append(" (fill linearly), or fix the recording");
   const std::int64_t line =
       timing.first_gap && timing.first_gap->line ? *timing.first_gap->line : 0;
   return located_message(source, line, 0, what);
 }
 
 GapPlan plan_gaps(const Recording& recording, const std::string& source, GapPolicy policy,
-                  bool bootstrap) {
+                  bool bootstrap, std::string_view setting) {
   GapPlan plan;
   plan.policy = policy;
   const std::size_t n = recording.sample_count();
@@ -125,15 +138,16 @@ GapPlan plan_gaps(const Recording& recording, const std::string& source, GapPoli
     return plan;
   }
   if (policy == GapPolicy::refuse) {
-    throw InputError(gap_refusal_message(source, timing));
+    throw InputError(gap_refusal_message(source, timing, setting));
   }
   plan.gaps = find_time_gaps(recording.time_s, timing.median_interval_s);
   if (plan.gaps.empty()) return plan;
   const std::string count = std::to_string(plan.gaps.size()) + " time-stamp gap(s)";
+  const std::string split_setting = setting_with(setting, "split");
   if (policy == GapPolicy::split) {
     const GapSplit split = split_at_gaps(n, plan.gaps, kMinPieceSamples);
     if (split.pieces.empty()) {
-      throw AnalysisError(source + ": --gaps split: no gap-free piece has " +
+      throw AnalysisError(source + ": " + split_setting + ": no gap-free piece has " +
                           std::to_string(kMinPieceSamples) + " samples or more (" + count +
                           " cut " + std::to_string(n) + " samples into " +
                           std::to_string(split.dropped_pieces) + " pieces)");
@@ -141,7 +155,7 @@ GapPlan plan_gaps(const Recording& recording, const std::string& source, GapPoli
     plan.pieces = split.pieces;
     plan.samples = 0;
     for (const auto& piece : plan.pieces) plan.samples += static_cast<std::int64_t>(piece.size());
-    plan.note = "--gaps split: " + count + "; the curves and the PSD are pooled over " +
+    plan.note = split_setting + ": " + count + "; the curves and the PSD are pooled over " +
                 std::to_string(plan.pieces.size()) + " gap-free piece(s) (" +
                 std::to_string(plan.samples) + " samples)";
     if (split.dropped_pieces > 0) {
@@ -164,17 +178,18 @@ GapPlan plan_gaps(const Recording& recording, const std::string& source, GapPoli
           recording.report.timing.first_gap->index == static_cast<std::int64_t>(g.after)) {
         at.append(", line ").append(std::to_string(*recording.report.timing.first_gap->line));
       }
-      throw InputError(source + ": --gaps interpolate: the gap before " + at +
-                       " (t = " + significant_number_text(g.start_s, 9) + " s, " +
+      throw InputError(source + ": " + setting_with(setting, "interpolate") + ": the gap before " +
+                       at + " (t = " + significant_number_text(g.start_s, 9) + " s, " +
                        significant_number_text(g.length_s) + " s long) lacks " +
                        std::to_string(g.missing) + " samples, more than interpolation may fill (" +
-                       std::to_string(limit) +
-                       ": 1 % of the record, at most 1000); use --gaps split");
+                       std::to_string(limit) + ": 1 % of the record, at most 1000); use " +
+                       split_setting);
     }
     filled += g.missing;
   }
   plan.samples += filled;
-  plan.note = "--gaps interpolate: " + count + " filled with " + std::to_string(filled) +
+  plan.note = setting_with(setting, "interpolate") + ": " + count + " filled with " +
+              std::to_string(filled) +
               " linearly interpolated sample(s) per channel (noise-free, so the shortest tau "
               "read slightly low)";
   return plan;

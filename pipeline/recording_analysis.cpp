@@ -38,7 +38,8 @@ RecordingAnalysis analyze(const Recording& recording, const std::string& source,
     throw InputError(source + ": no gyro or accelerometer channels to analyse");
   }
   const GapPlan gap_plan =
-      plan_gaps(recording, source, options.gaps, options.axis.bootstrap_replicates >= 2);
+      plan_gaps(recording, source, options.gaps, options.axis.bootstrap_replicates >= 2,
+                options.gap_policy_setting);
   if (release != nullptr) std::vector<double>().swap(*release);
   // The samples each channel is analysed on: the recording, its gap-free pieces, or a copy
   // with the gaps filled (kept alive here for the spans).

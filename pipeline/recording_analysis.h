@@ -22,6 +22,8 @@ namespace imunoise::pipeline {
 struct RecordingAnalysisOptions {
   /// Settings of every axis (their `progress` and `threads` are set per channel here).
   AxisAnalysisOptions axis;
+  /// How messages and the data-quality note name the gap policy (plan_gaps); the CLI: "--gaps".
+  std::string gap_policy_setting{kGapPolicySetting};
   GapPolicy gaps = GapPolicy::refuse;  ///< what to do with time-stamp gaps
   unsigned threads = 0;                ///< worker threads across channels (0 = all cores)
 };

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/tau_grid.h"
@@ -22,6 +23,8 @@ namespace imunoise::tools {
 
 namespace {
 
+constexpr std::string_view kGapsFlag = "--gaps";
+
 pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau0_s) {
   if (!(s.confidence > 0.0 && s.confidence < 1.0)) {
     throw InputError("--confidence: expected a level in (0, 1), got " +
@@ -34,6 +37,7 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
   options.confidence = s.confidence;
   options.grid = analysis::parse_tau_grid(s.taus);
   options.bootstrap_replicates = s.bootstrap;
+  options.bootstrap_setting = "--bootstrap N";
   options.seed = s.seed;
   options.fit.gauss_markov =
       s.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
@@ -158,6 +162,10 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
       ->group(group);
 }
 
+pipeline::GapPolicy gap_policy_option(const AnalysisSettings& settings) {
+  return pipeline::parse_gap_policy(settings.gaps, kGapsFlag);
+}
+
 std::string import_fftw_wisdom_option(const AnalysisSettings& settings) {
   std::string path;
   if (settings.fftw_wisdom) {
@@ -173,7 +181,8 @@ pipeline::RecordingAnalysisOptions recording_analysis_options(const AnalysisSett
                                                               double tau0_s) {
   pipeline::RecordingAnalysisOptions options;
   options.axis = axis_options(settings, tau0_s);
-  options.gaps = pipeline::parse_gap_policy(settings.gaps);
+  options.gaps = gap_policy_option(settings);
+  options.gap_policy_setting = kGapsFlag;
   options.threads = settings.threads;
   return options;
 }

@@ -37,6 +37,10 @@ struct AnalysisSettings {
 /// Adds the analysis flags to `cmd`; values land in `settings` (which must outlive the parse).
 void add_analysis_options(CLI::App& cmd, AnalysisSettings& settings);
 
+/// The gap policy of `--gaps`; InputError "--gaps: expected refuse, split or interpolate, got
+/// '…'" for another value.
+pipeline::GapPolicy gap_policy_option(const AnalysisSettings& settings);
+
 class ProgressBar;
 class StageTimes;
 
@@ -50,8 +54,9 @@ struct AnalysisFeedback {
   StageTimes* channel_times = nullptr;
 };
 
-/// The pipeline's options of SETTINGS for a record of sample period TAU0_S. Throws
-/// InputError naming the flag for a value out of range (--confidence, --bootstrap,
+/// The pipeline's options of SETTINGS for a record of sample period TAU0_S, with the flags as
+/// the names the pipeline's messages and notes give its settings (--gaps, --bootstrap N).
+/// Throws InputError naming the flag for a value out of range (--confidence, --bootstrap,
 /// --sinusoid-hz beyond Nyquist, --taus, --gaps).
 pipeline::RecordingAnalysisOptions recording_analysis_options(const AnalysisSettings& settings,
                                                               double tau0_s);

@@ -72,8 +72,8 @@ struct AnalyzeArgs {
 /// TIMES gets the wall time of reading, the analysis, the output files and the report (the
 /// caller adds what follows: the summary and publishing, as "outputs").
 void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
-  (void)pipeline::parse_gap_policy(args.analysis.gaps);  // a bad --gaps fails before the read
-  import_fftw_wisdom_option(args.analysis);              // so does a bad wisdom file
+  (void)gap_policy_option(args.analysis);    // a bad --gaps fails before the read
+  import_fftw_wisdom_option(args.analysis);  // so does a bad wisdom file
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   std::optional<std::array<NoiseCoefficients, 6>> truth;
   if (!args.truth_path.empty()) {

@@ -67,6 +67,9 @@ void run_discretize(const DiscretizeArgs& a) {
   options.conservative = a.conservative;
   options.gm_convention = gm_conventions().at(a.gm_convention);
   options.filter_rate_hz = 1.0 / a.dt_s;
+  // The messages have always named export's flags, which discretize does not have (it uses
+  // each axis's tau of the ADEV minimum); kept so that its errors read as before.
+  options.setting_names = {"--axis", "--correction-interval"};
   const ins::BiasModel bias = kBiasModels.at(a.bias);
 
   const bool sensor = a.states == "sensor";
@@ -77,6 +80,7 @@ void run_discretize(const DiscretizeArgs& a) {
     ins::InsNoiseOptions noise_options;
     noise_options.conservative = a.conservative;
     noise_options.gm_convention = options.gm_convention;
+    noise_options.setting_names = options.setting_names;
     ins::InsSensorNoise noise;
     try {
       noise = ins::ins_sensor_noise(model, noise_options);

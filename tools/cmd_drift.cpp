@@ -81,6 +81,7 @@ pipeline::DriftRunOptions drift_options(const DriftArgs& a) {
   o.location = {a.location[0], a.location[1], a.location[2], a.location_given};
   if (a.heading_deg) o.heading_rad = *a.heading_deg * units::kDeg;
   o.heading_sigma_rad = a.heading_sigma_deg * units::kDeg;
+  o.heading_setting = "--heading DEG";
   o.align_s = io::parse_duration_s(a.align, "--align");
   o.navigation_s = io::parse_duration_s(a.segment, "--segment");
   o.warmup_s = io::parse_duration_s(a.warmup, "--warmup", /*allow_zero=*/true);

@@ -66,6 +66,7 @@ void run_export(const ExportArgs& a, bool axis_given) {
   request.parameters.conservative = a.conservative;
   request.parameters.gm_convention = gm_conventions().at(a.gm_convention);
   request.parameters.correction_interval_s = a.correction_interval_s;
+  request.parameters.setting_names = {"--axis", "--correction-interval"};
   request.model_path = a.model_path;
 
   if (a.to == "all") {

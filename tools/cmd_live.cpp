@@ -91,7 +91,7 @@ void run_live(const LiveArgs& args) {
   const double max_runtime_s =
       args.max_runtime.empty() ? 0.0 : io::parse_duration_s(args.max_runtime, "--max-runtime");
   if (args.max_samples < 16) throw InputError("--max-samples: expected at least 16");
-  (void)pipeline::parse_gap_policy(args.analysis.gaps);
+  (void)gap_policy_option(args.analysis);
   import_fftw_wisdom_option(args.analysis);  // once, for every analysis of the window
   if (args.queue_capacity < 1) throw InputError("--queue-capacity: expected at least 1");
   if (!args.output_dir.empty()) io::create_output_directory(args.output_dir);

@@ -83,7 +83,7 @@ TEST(Confidence, RejectsInvalidArguments) {
   try {
     deviation_interval(1.0, 10.0, 1.0);
     ADD_FAILURE() << "no throw for confidence=1";
-  } catch (const AnalysisError& e) {
+  } catch (const ContractViolation& e) {
     EXPECT_THAT(e.what(), HasSubstr("deviation_interval: confidence must be in (0, 1)"));
   }
   try {

@@ -158,9 +158,9 @@ TEST(Edf, RejectsInvalidArguments) {
   } catch (const AnalysisError& e) {
     EXPECT_THAT(e.what(), HasSubstr("edf_greenhall: too few phase samples (M=250, need >= 300"));
   }
-  EXPECT_THROW(edf_greenhall(0, 4, 1, 1000, true, false), AnalysisError);
+  EXPECT_THROW(edf_greenhall(0, 4, 1, 1000, true, false), ContractViolation);
   EXPECT_THROW(edf_greenhall(3, 2, 1, 1000, true, false), AnalysisError);
-  EXPECT_THROW(edf_greenhall(0, 2, 0, 1000, true, false), AnalysisError);
+  EXPECT_THROW(edf_greenhall(0, 2, 0, 1000, true, false), ContractViolation);
   try {
     edf_totdev(-3, 4, 1000);
     ADD_FAILURE() << "no throw";
@@ -176,7 +176,7 @@ TEST(Edf, RejectsInvalidArguments) {
   }
   EXPECT_THROW(edf_for(DeviationType::oadev, -4, 2, 1000), AnalysisError);
   EXPECT_THROW(greenhall_table1(-3, 2), AnalysisError);
-  EXPECT_THROW(greenhall_table3(0), AnalysisError);
+  EXPECT_THROW(greenhall_table3(0), ContractViolation);
 }
 
 }  // namespace

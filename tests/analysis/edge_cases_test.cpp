@@ -186,7 +186,7 @@ TEST(EdgeCases, PooledOadevEqualsTheAvarOfEveryDifferenceThatDoesNotStraddleAGap
       "too few samples for the requested tau");
   // Total deviation cannot be pooled this way: refused, not silently wrong.
   options.type = DeviationType::totdev;
-  test::expect_throw_containing<InputError>(
+  test::expect_throw_containing<ContractViolation>(
       [&] { (void)compute_pooled_deviation(phase_spans, 0.02, factors, options); },
       "cannot be pooled");
 }
@@ -244,8 +244,8 @@ TEST(EdgeCases, PooledWelchWeightsPiecesBySegmentCount) {
   EXPECT_NEAR(mean / 0.02, 1.0, 0.1);
   // No piece long enough for one segment: a clear error.
   fixed.segment_length = 20000;
-  test::expect_throw_containing<InputError>([&] { (void)pooled_welch_psd(pieces, 100.0, fixed); },
-                                            "no piece is as long");
+  test::expect_throw_containing<ContractViolation>(
+      [&] { (void)pooled_welch_psd(pieces, 100.0, fixed); }, "no piece is as long");
 }
 
 TEST(EdgeCases, CountsAbove2To31KeepTheirArithmeticIn64Bits) {

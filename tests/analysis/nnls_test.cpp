@@ -144,8 +144,8 @@ TEST(Nnls, AllNegativeCorrelationGivesZero) {
 
 TEST(Nnls, RejectsBadInput) {
   const Eigen::MatrixXd A = Eigen::MatrixXd::Ones(3, 2);
-  test::expect_throw_containing<AnalysisError>([&] { nnls(A, Eigen::VectorXd::Ones(4)); },
-                                               "3 rows but b has 4");
+  test::expect_throw_containing<ContractViolation>([&] { nnls(A, Eigen::VectorXd::Ones(4)); },
+                                                   "3 rows but b has 4");
   Eigen::VectorXd b = Eigen::VectorXd::Ones(3);
   b(1) = std::numeric_limits<double>::quiet_NaN();
   test::expect_throw_containing<AnalysisError>([&] { nnls(A, b); }, "must be finite");

@@ -265,7 +265,7 @@ TEST(NoiseFit, FitPointsCapsTheEdfOfMisidentifiedLongTauPoints) {
   EXPECT_EQ(points[1].edf, curve.points[1].edf);  // a white-FM EDF is left alone
   EXPECT_DOUBLE_EQ(points[0].avar, 1e-10);
   curve.type = DeviationType::mdev;
-  test::expect_throw_containing<InputError>([&] { fit_points(curve); }, "not mdev");
+  test::expect_throw_containing<ContractViolation>([&] { fit_points(curve); }, "not mdev");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -307,8 +307,8 @@ TEST(NoiseFit, RefitRejectsAStructureThatDoesNotMatchThePoints) {
   const auto points = exact_points(truth, 0, 20);
   const FitResult fit = fit_noise_model(points);
   const std::vector<FitPoint> fewer(points.begin(), points.begin() + 5);
-  test::expect_throw_containing<AnalysisError>([&] { refit_fixed_terms(fewer, fit, {}); },
-                                               "out of range");
+  test::expect_throw_containing<ContractViolation>([&] { refit_fixed_terms(fewer, fit, {}); },
+                                                   "out of range");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -458,8 +458,8 @@ TEST(NoiseFit, RejectsTooShortRecordsNanAndAllZero) {
                                                "widen tau_min_s/tau_max_s");
   FitOptions bad;
   bad.weight_iterations = -1;
-  test::expect_throw_containing<InputError>([&] { fit_noise_model(range, bad); },
-                                            "weight_iterations");
+  test::expect_throw_containing<ContractViolation>([&] { fit_noise_model(range, bad); },
+                                                   "weight_iterations");
 }
 
 }  // namespace

@@ -183,16 +183,16 @@ TEST(NoiseId, RejectsInvalidArguments) {
   try {
     lag1_noise_alpha(phase, 0, 2);
     ADD_FAILURE() << "no throw";
-  } catch (const AnalysisError& e) {
+  } catch (const ContractViolation& e) {
     EXPECT_THAT(e.what(), HasSubstr("lag1_noise_alpha: m must be >= 1 (got 0)"));
   }
   try {
     lag1_noise_alpha(phase, 1, 4);
     ADD_FAILURE() << "no throw";
-  } catch (const AnalysisError& e) {
+  } catch (const ContractViolation& e) {
     EXPECT_THAT(e.what(), HasSubstr("lag1_noise_alpha: d_max must be in 0..3 (got 4)"));
   }
-  EXPECT_THROW(noise_alpha_for(DeviationType::oadev, phase, -1), AnalysisError);
+  EXPECT_THROW(noise_alpha_for(DeviationType::oadev, phase, -1), ContractViolation);
 }
 
 }  // namespace

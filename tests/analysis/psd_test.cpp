@@ -601,26 +601,27 @@ TEST(Welch, RejectsBadInputWithAClearMessage) {
   const std::vector<double> shortx(10, 1.0);
   WelchOptions options;
   options.segment_length = 16;
-  expect_throw_containing<InputError>([&] { welch_psd(shortx, 1.0, options); },
-                                      "record of 10 samples is shorter than one segment of 16");
-  expect_throw_containing<InputError>([&] { welch_psd(shortx, 1.0); }, "too short");
+  expect_throw_containing<ContractViolation>(
+      [&] { welch_psd(shortx, 1.0, options); },
+      "record of 10 samples is shorter than one segment of 16");
+  expect_throw_containing<ContractViolation>([&] { welch_psd(shortx, 1.0); }, "too short");
   std::vector<double> with_nan(64, 0.0);
   with_nan[5] = std::numeric_limits<double>::quiet_NaN();
-  expect_throw_containing<InputError>([&] { welch_psd(with_nan, 1.0, options); },
-                                      "sample 5 is not finite");
+  expect_throw_containing<ContractViolation>([&] { welch_psd(with_nan, 1.0, options); },
+                                             "sample 5 is not finite");
   options.overlap = 1.0;
-  expect_throw_containing<InputError>(
+  expect_throw_containing<ContractViolation>(
       [&] { welch_psd(std::vector<double>(64, 0.0), 1.0, options); },
       "overlap must be in [0, 1) (got 1)");
   options.overlap = 0.5;
-  expect_throw_containing<InputError>(
+  expect_throw_containing<ContractViolation>(
       [&] { welch_psd(std::vector<double>(64, 0.0), 0.0, options); },
       "sample rate must be finite and > 0");
-  expect_throw_containing<InputError>([&] { WelchEstimator(1, options); },
-                                      "segment_length must be >= 2 and fit an int (got 1)");
-  expect_throw_containing<InputError>([&] { log_bin(Spectrum{}, 0); },
-                                      "bins_per_decade must be >= 1 (got 0)");
-  expect_throw_containing<InputError>(
+  expect_throw_containing<ContractViolation>([&] { WelchEstimator(1, options); },
+                                             "segment_length must be >= 2 and fit an int (got 1)");
+  expect_throw_containing<ContractViolation>([&] { log_bin(Spectrum{}, 0); },
+                                             "bins_per_decade must be >= 1 (got 0)");
+  expect_throw_containing<ContractViolation>(
       [&] { log_bin(log_bin(welch_psd(std::vector<double>(64, 1.0), 1.0, options)), 10); },
       "already binned");
 }
@@ -629,20 +630,20 @@ TEST(PsdModel, RejectsBadArgumentsWithAClearMessage) {
   using test::expect_throw_containing;
   NoiseCoefficients model;
   model.white_noise = 1e-3;
-  expect_throw_containing<InputError>([&] { model_psd_one_sided(model, 0.0, 0.01); },
-                                      "frequency must be finite and > 0 (got 0 Hz)");
-  expect_throw_containing<InputError>([&] { model_psd_one_sided(model, 1.0, -1.0); },
-                                      "tau0 must be finite and > 0");
+  expect_throw_containing<ContractViolation>([&] { model_psd_one_sided(model, 0.0, 0.01); },
+                                             "frequency must be finite and > 0 (got 0 Hz)");
+  expect_throw_containing<ContractViolation>([&] { model_psd_one_sided(model, 1.0, -1.0); },
+                                             "tau0 must be finite and > 0");
   model.random_walk = -1.0;
-  expect_throw_containing<InputError>([&] { model_psd_terms(model, 1.0, 0.01); },
-                                      "random_walk K must be finite and >= 0 (got -1)");
+  expect_throw_containing<ContractViolation>([&] { model_psd_terms(model, 1.0, 0.01); },
+                                             "random_walk K must be finite and >= 0 (got -1)");
   model.random_walk = 0.0;
   // A band that holds no bin.
   const auto x = white_samples(4096, 1.0, 108);
   const Spectrum binned = log_bin(welch_psd(x, 100.0), 10);
   expect_throw_containing<AnalysisError>([&] { cross_check_psd(binned, model, 0.01, 1e-9); },
                                          "no spectrum bin between");
-  expect_throw_containing<InputError>([&] { psd_readoff(Spectrum{}); }, "spectrum is empty");
+  expect_throw_containing<ContractViolation>([&] { psd_readoff(Spectrum{}); }, "spectrum is empty");
 }
 
 }  // namespace

@@ -113,8 +113,8 @@ TEST(Welch, AutomaticSegmentLengthIsTheLargestPowerOfTwoUpToAnEighth) {
   EXPECT_EQ(automatic_segment_length(256), 32u);  // 256/8 = 32
   EXPECT_EQ(automatic_segment_length(10000), 1024u);
   EXPECT_EQ(automatic_segment_length(86'400'000), std::size_t{1} << 23);  // 24 h at 1 kHz
-  test::expect_throw_containing<InputError>([] { (void)automatic_segment_length(15); },
-                                            "too short");
+  test::expect_throw_containing<ContractViolation>([] { (void)automatic_segment_length(15); },
+                                                   "too short");
   // welch_psd resolves segment_length = 0 by the same rule.
   EXPECT_EQ(welch_psd(test::white_noise(10000, 1.0, 2), 1.0).segment_length, 1024u);
 }

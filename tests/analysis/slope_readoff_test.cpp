@@ -103,7 +103,7 @@ TEST(SlopeReadoff, FloorReadoffOverestimatesBiasInstabilityInTheWorkedExample) {
 
 TEST(SlopeReadoff, RejectsBadInput) {
   const std::vector<double> tau = {1.0, 2.0, 4.0};
-  test::expect_throw_containing<AnalysisError>(
+  test::expect_throw_containing<ContractViolation>(
       [&] {
         slope_readoff(tau, std::vector<double>{1.0, 2.0});
       },
@@ -113,7 +113,7 @@ TEST(SlopeReadoff, RejectsBadInput) {
         slope_readoff(std::vector<double>{1.0, 2.0}, std::vector<double>{1.0, 2.0});
       },
       "at least 3 points");
-  test::expect_throw_containing<AnalysisError>(
+  test::expect_throw_containing<ContractViolation>(
       [&] {
         slope_readoff(std::vector<double>{1.0, 4.0, 2.0}, std::vector<double>{1, 1, 1});
       },

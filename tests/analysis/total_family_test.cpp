@@ -254,14 +254,15 @@ void expect_analysis_error(F&& f, const std::string& fragment) {
 TEST(TotalFamily, RejectsBadArguments) {
   const auto phase = nbs9_phase();
   using T = TotalFamilyType;
-  expect_analysis_error([&] { total_family_variance(T::mtotdev, phase, 0, 1.0); },
-                        "averaging factor must be >= 1, got 0");
+  test::expect_throw_containing<ContractViolation>(
+      [&] { total_family_variance(T::mtotdev, phase, 0, 1.0); },
+      "averaging factor must be >= 1, got 0");
   expect_analysis_error([&] { total_family_variance(T::mtotdev, phase, 4, 1.0); },
                         "record too short: 10 phase samples for m = 4 (need >= 12)");
   expect_analysis_error([&] { total_family_variance(T::htotdev, phase, 4, 1.0); },
                         "total_family_variance(htotdev): record too short");
-  expect_analysis_error([&] { total_family_variance(T::ttotdev, phase, 1, 0.0); },
-                        "tau0 must be positive");
+  test::expect_throw_containing<ContractViolation>(
+      [&] { total_family_variance(T::ttotdev, phase, 1, 0.0); }, "tau0 must be positive");
   expect_analysis_error([&] { total_family_variance(T::mtotdev, phase, 1, 1.0, true, -3); },
                         "bias correction needs alpha in -2..2, got -3");
   expect_analysis_error([&] { total_family_variance(T::htotdev, phase, 2, 1.0, true, 3); },

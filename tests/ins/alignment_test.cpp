@@ -124,6 +124,7 @@ TEST(CoarseAlignment, MemsGyroWithoutHeadingAsksForHeadingFlag) {
   AlignmentInput input =
       synthetic_input(attitude_from_euler(kRoll, kPitch, kYaw), Vector3d::Zero(), Vector3d::Zero());
   input.gyro_bias_sigma_rad_per_s = kMemsGyroBiasSigma;  // heading σ 78 deg > 5 deg
+  input.heading_setting = "--heading DEG";               // as `imunoise drift` names it
   test::expect_throw_containing<InputError>([&] { coarse_alignment(input); }, "--heading DEG");
   test::expect_throw_containing<InputError>([&] { coarse_alignment(input); },
                                             "gyrocompassing is not possible");

@@ -348,7 +348,7 @@ TEST(StrapdownNavigator, RejectsBadInputAndKeepsState) {
       [&] { StrapdownNavigator navigator(bad, MechanizationOptions{}); }, "latitude");
   StrapdownNavigator navigator(NavState{}, MechanizationOptions{});
   ImuIncrement increment;  // dt = 0
-  test::expect_throw_containing<InputError>([&] { navigator.update(increment); }, "dt");
+  test::expect_throw_containing<ContractViolation>([&] { navigator.update(increment); }, "dt");
   increment.dt_s = kDt;
   increment.dv_b_m_per_s.x() = std::numeric_limits<double>::infinity();
   test::expect_throw_containing<InputError>([&] { navigator.update(increment); }, "finite");

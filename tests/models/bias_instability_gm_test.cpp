@@ -90,13 +90,13 @@ TEST(BiasInstabilityGm, NamesAndErrors) {
   EXPECT_EQ(name_of(GmConvention::min_adev_at_tau_min), "min_adev_at_tau_min");
   EXPECT_EQ(name_of(GmConvention::peak_match), "peak_match");
   EXPECT_EQ(name_of(GmConvention::sigma_equals_b), "sigma_equals_b");
-  test::expect_throw_containing<InputError>(
+  test::expect_throw_containing<ContractViolation>(
       [] { gauss_markov_from_bias_instability(-1.0, 10.0, GmConvention::peak_match); },
       "B must be finite and >= 0");
-  test::expect_throw_containing<InputError>(
+  test::expect_throw_containing<ContractViolation>(
       [] { gauss_markov_from_bias_instability(1.0, 0.0, GmConvention::peak_match); },
       "tau_min must be finite and > 0");
-  test::expect_throw_containing<InputError>(
+  test::expect_throw_containing<ContractViolation>(
       [] { gauss_markov_from_bias_instability(1.0, 1.0, GmConvention::min_adev_at_tau_min, -2.0); },
       "min_adev must be finite and > 0");
 }

@@ -142,16 +142,16 @@ TEST(PowerLawNoise, RejectsInvalidArguments) {
   try {
     power_law_noise(3, 10, 1);
     ADD_FAILURE() << "no throw";
-  } catch (const InputError& e) {
+  } catch (const ContractViolation& e) {
     EXPECT_THAT(e.what(), HasSubstr("power_law_noise: alpha must be one of 2, 1, 0, -1, -2"));
   }
   try {
     power_law_noise(0, 10, 1, -1.0);
     ADD_FAILURE() << "no throw";
-  } catch (const InputError& e) {
+  } catch (const ContractViolation& e) {
     EXPECT_THAT(e.what(), HasSubstr("power_law_noise: h must be finite and >= 0"));
   }
-  EXPECT_THROW(kasdin_walter_coefficients(-3, 4), InputError);
+  EXPECT_THROW(kasdin_walter_coefficients(-3, 4), ContractViolation);
 }
 
 }  // namespace

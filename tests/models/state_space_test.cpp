@@ -399,9 +399,9 @@ TEST(StateSpace, QdIsSymmetricPositiveSemidefinite) {
   }
 }
 
-TEST(StateSpace, BadArgumentsThrowInvalidArgument) {
+TEST(StateSpace, BadArgumentsAreContractViolations) {
   using test::expect_throw_containing;
-  using E = std::invalid_argument;
+  using E = ContractViolation;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const ContinuousStateModel rw = random_walk_state(1.0, "bg");
   expect_throw_containing<E>([] { random_walk_state(-1.0, "bg"); }, "random_walk_state");

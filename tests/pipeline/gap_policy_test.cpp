@@ -59,7 +59,8 @@ TEST(GapPolicy, ParsesTheThreePoliciesAndNamesTheFlagOtherwise) {
   EXPECT_EQ(parse_gap_policy("refuse"), GapPolicy::refuse);
   EXPECT_EQ(parse_gap_policy("split"), GapPolicy::split);
   EXPECT_EQ(parse_gap_policy("interpolate"), GapPolicy::interpolate);
-  test::expect_throw_containing<InputError>([] { (void)parse_gap_policy("fill"); }, "--gaps");
+  test::expect_throw_containing<InputError>([] { (void)parse_gap_policy("fill", "--gaps"); },
+                                            "--gaps");
 }
 
 TEST(GapPolicy, FindsEveryGapWithTheSamplingReportCriterion) {
@@ -77,7 +78,7 @@ TEST(GapPolicy, FindsEveryGapWithTheSamplingReportCriterion) {
   EXPECT_NEAR(gaps[0].length_s, 0.06, 1e-12);
   EXPECT_EQ(gaps[1].after, 295u);
   EXPECT_EQ(gaps[1].missing, 100);
-  test::expect_throw_containing<InputError>([&] { (void)find_time_gaps(t, 0.0); }, "period");
+  test::expect_throw_containing<ContractViolation>([&] { (void)find_time_gaps(t, 0.0); }, "period");
 }
 
 TEST(GapPolicy, SplitKeepsThePiecesLongEnoughAndCountsTheRest) {
