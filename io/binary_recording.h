@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "common/version.h"
 #include "pipeline/recording.h"
 

@@ -14,7 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "io/csv_row_parser.h"
 #include "io/mapping_guard.h"
 #include "io/table_data.h"

@@ -26,7 +26,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "io/input_config.h"
 #include "io/table_data.h"
 #include "io/table_layout.h"

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "io/csv_text.h"
 
 namespace imunoise::io::csv_detail {

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "io/input_config.h"
 #include "io/lcm_user_imu_decoder.h"
 #include "pipeline/recording.h"

@@ -9,7 +9,7 @@
 #include <ostream>
 #include <string>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "io/binary_recording.h"
 #include "io/simulation_model.h"
 #include "models/noise_simulator.h"

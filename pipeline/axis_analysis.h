@@ -17,7 +17,7 @@
 #include "analysis/psd_model.h"
 #include "analysis/slope_readoff.h"
 #include "analysis/tau_grid.h"
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "models/noise_model.h"
 
 namespace imunoise::pipeline {

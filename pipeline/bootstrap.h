@@ -13,7 +13,7 @@
 
 #include "analysis/noise_fit.h"
 #include "common/noise_coefficients.h"
-#include "common/progress.h"
+#include "common/progress_callback.h"
 
 namespace imunoise::pipeline {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "common/errors.h"
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "common/units.h"
 #include "ins/alignment.h"
 #include "ins/drift_prediction.h"

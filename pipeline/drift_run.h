@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "models/bias_instability_gm.h"
 #include "models/noise_model.h"
 #include "pipeline/drift_analysis.h"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
 #include "pipeline/gap_policy.h"

@@ -15,8 +15,8 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/fftw_wisdom.h"
+#include "io/terminal_progress_bar.h"
 #include "pipeline/gap_policy.h"
-#include "tools/progress.h"
 #include "tools/verbosity.h"
 
 namespace imunoise::tools {

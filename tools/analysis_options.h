@@ -13,6 +13,10 @@ namespace CLI {
 class App;
 }
 
+namespace imunoise::io {
+class ProgressBar;
+}
+
 namespace imunoise::tools {
 
 /// The analysis flags (`--taus`, `--confidence`, `--bootstrap`, …) as given.
@@ -41,7 +45,6 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& settings);
 /// '…'" for another value.
 pipeline::GapPolicy gap_policy_option(const AnalysisSettings& settings);
 
-class ProgressBar;
 class StageTimes;
 
 /// What analyze_recording reports while it runs; every part is optional and none changes the
@@ -49,7 +52,7 @@ class StageTimes;
 struct AnalysisFeedback {
   /// Advanced per stage and bootstrap replicate of every channel ("k/6 channels"); the caller
   /// finishes it.
-  ProgressBar* bar = nullptr;
+  io::ProgressBar* bar = nullptr;
   /// Wall seconds per stage (deviations, fit, PSD, bootstrap/intervals), summed over channels.
   StageTimes* channel_times = nullptr;
 };

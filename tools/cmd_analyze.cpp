@@ -36,6 +36,7 @@
 #include "io/psd_csv.h"
 #include "io/sampling_report.h"
 #include "io/simulation_model.h"
+#include "io/terminal_progress_bar.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
 #include "pipeline/gap_policy.h"
@@ -46,7 +47,6 @@
 #include "tools/input_options.h"
 #include "tools/invocation.h"
 #include "tools/lcm_bus.h"
-#include "tools/progress.h"
 #include "tools/recording_input.h"
 #include "tools/verbosity.h"
 
@@ -85,7 +85,7 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
     }
     truth = values;
   }
-  ProgressBar bar("analyze", progress_wanted(args.verbosity));
+  io::ProgressBar bar("analyze", progress_wanted(args.verbosity));
   // Open the bus before the work: a bad --lcm-url fails in a second, not after the analysis.
   std::optional<LcmBus> bus;
   if (args.publish) bus.emplace(args.lcm_url);

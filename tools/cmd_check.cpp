@@ -9,9 +9,9 @@
 
 #include "io/csv_reader.h"
 #include "io/sampling_report.h"
+#include "io/terminal_progress_bar.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
-#include "tools/progress.h"
 #include "tools/recording_input.h"
 #include "tools/verbosity.h"
 
@@ -31,7 +31,7 @@ struct CheckArgs {
 void run_check(const CheckArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   StageTimes times;
-  ProgressBar bar("check", progress_wanted(args.verbosity));
+  io::ProgressBar bar("check", progress_wanted(args.verbosity));
   const pipeline::Recording recording =
       read_input_recording(args.file, config, args.lcm, bar.callback());
   bar.finish();

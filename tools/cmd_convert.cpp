@@ -14,9 +14,9 @@
 #include "io/recording_csv_writer.h"
 #include "io/recording_input.h"
 #include "io/recording_lcm_writer.h"
+#include "io/terminal_progress_bar.h"
 #include "tools/commands.h"
 #include "tools/input_options.h"
-#include "tools/progress.h"
 #include "tools/recording_input.h"
 #include "tools/verbosity.h"
 
@@ -57,7 +57,7 @@ void run_convert(const ConvertArgs& args) {
   }
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
   StageTimes times;
-  ProgressBar bar("convert", progress_wanted(args.verbosity));
+  io::ProgressBar bar("convert", progress_wanted(args.verbosity));
   const pipeline::Recording recording =
       read_input_recording(args.input, config, args.lcm, bar.callback());
   bar.finish();

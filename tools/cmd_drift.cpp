@@ -18,18 +18,18 @@
 
 #include "common/errors.h"
 #include "common/number_text.h"
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "common/units.h"
 #include "io/drift_files.h"
+#include "io/duration_parser.h"
 #include "io/noise_model_yaml.h"
+#include "io/terminal_progress_bar.h"
 #include "pipeline/drift_run.h"
 #include "report/write_report.h"
 #include "tools/commands.h"
-#include "io/duration_parser.h"
 #include "tools/gm_convention_option.h"
 #include "tools/input_options.h"
 #include "tools/invocation.h"
-#include "tools/progress.h"
 #include "tools/recording_input.h"
 #include "tools/verbosity.h"
 
@@ -133,7 +133,7 @@ void print_drift_summary(const pipeline::DriftSummary& s) {
 
 /// TIMES gets the wall time of each computing stage (the caller adds the outputs).
 void run_drift(const DriftArgs& a, StageTimes& times) {
-  ProgressBar bar("drift", progress_wanted(a.verbosity));
+  io::ProgressBar bar("drift", progress_wanted(a.verbosity));
   if (a.location.size() != 3)
     throw InputError("--location: expected LAT,LON,H (deg, deg, m), got " +
                      std::to_string(a.location.size()) + " values");

@@ -21,6 +21,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/atomic_output.h"
+#include "io/duration_parser.h"
 #include "io/imu_sample_message.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
@@ -29,7 +30,6 @@
 #include "pipeline/live_window.h"
 #include "tools/analysis_options.h"
 #include "tools/commands.h"
-#include "io/duration_parser.h"
 #include "tools/lcm_bus.h"
 #include "tools/verbosity.h"
 

@@ -18,12 +18,12 @@
 #include "common/units.h"
 #include "io/allan_csv.h"
 #include "io/drift_files.h"
+#include "io/duration_parser.h"
 #include "io/lcm_messages.h"
 #include "io/noise_model_yaml.h"
 #include "io/result_files.h"
 #include "pipeline/recording.h"
 #include "tools/commands.h"
-#include "io/duration_parser.h"
 #include "tools/lcm_bus.h"
 #include "tools/verbosity.h"
 

@@ -21,9 +21,9 @@
 #include "io/duration_parser.h"
 #include "io/simulation_output.h"
 #include "io/simulation_setup.h"
+#include "io/terminal_progress_bar.h"
 #include "models/noise_simulator.h"
 #include "tools/commands.h"
-#include "tools/progress.h"
 #include "tools/verbosity.h"
 
 namespace imunoise::tools {
@@ -107,7 +107,7 @@ void run_simulate(const SimulateArgs& args, StageTimes& times) {
   times.mark("setup");
 
   // 2. Generate and write block by block: memory stays constant for any duration.
-  ProgressBar bar("simulate", progress_wanted(args.verbosity));
+  io::ProgressBar bar("simulate", progress_wanted(args.verbosity));
   io::write_simulation(simulator, setup, run, args.output, args.lcm_channel, bar.callback());
   bar.finish();
   times.mark("generate and write");

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 #include "io/input_config.h"
 #include "pipeline/recording.h"
 

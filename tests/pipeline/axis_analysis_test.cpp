@@ -165,7 +165,7 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   EXPECT_LT(bound * last.tau_s / std::sqrt(2.0), 3.0 * last.value);
 }
 
-// The progress callback (common/progress.h) only observes: the same record gives bit-identical
+// The progress callback (common/progress_callback.h) only observes: the same record gives bit-identical
 // curves, coefficients and intervals with and without it, also with the bootstrap on two
 // threads reporting concurrently. The reports cover the documented units: 4 + replicates,
 // ending at done == total with stage "done".

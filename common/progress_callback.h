@@ -2,7 +2,7 @@
 /// @brief The progress hook of long computations. The pure layers know nothing about
 /// terminals: a long computation takes an optional `ProgressCallback` in its options and calls
 /// it at coarse granularity (per stage, bootstrap replicate, Monte Carlo run or 1 MiB block of
-/// a file — never per sample); the CLI turns the calls into a progress bar (tools/progress.h).
+/// a file — never per sample); the CLI turns the calls into a progress bar (io/terminal_progress_bar.h).
 /// A callback never changes a result: the computation does the same arithmetic with or without
 /// one.
 #pragma once

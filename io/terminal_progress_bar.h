@@ -2,7 +2,7 @@
 /// @brief The CLI's progress bar: one line on stderr,
 /// `analyze: deviations [##########          ]  50%  3/6 channels  0:04`, redrawn in place
 /// with '\r' at most ten times a second and ended with '\n' at 100 % by finish(). Only the
-/// tools draw it; computations report through common/progress.h callbacks.
+/// tools draw it; computations report through common/progress_callback.h callbacks.
 #pragma once
 
 #include <atomic>
@@ -12,9 +12,9 @@
 #include <string>
 #include <string_view>
 
-#include "common/progress.h"
+#include "common/progress_callback.h"
 
-namespace imunoise::tools {
+namespace imunoise::io {
 
 /// What one progress line shows.
 struct ProgressLine {
@@ -88,4 +88,4 @@ class ProgressBar {
   std::size_t drawn_chars_ = 0;  ///< length of the line on screen; under draw_mutex_
 };
 
-}  // namespace imunoise::tools
+}  // namespace imunoise::io

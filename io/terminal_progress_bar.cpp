@@ -1,4 +1,4 @@
-#include "tools/progress.h"
+#include "io/terminal_progress_bar.h"
 
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace imunoise::tools {
+namespace imunoise::io {
 
 namespace {
 
@@ -207,4 +207,4 @@ void ProgressBar::draw(bool final_line) {
   write_stderr(out);
 }
 
-}  // namespace imunoise::tools
+}  // namespace imunoise::io
