@@ -15,6 +15,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/fftw_wisdom.h"
+#include "io/stage_progress.h"
 #include "io/terminal_progress_bar.h"
 #include "pipeline/gap_policy.h"
 #include "tools/verbosity.h"
@@ -54,72 +55,6 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
   options.auto_low_pass = !s.no_low_pass_check;
   return options;
 }
-
-/// Feeds one progress bar and the stage times from the channels analysed in parallel: the
-/// bar's fraction is the sum of the channels' units over their total, its stage the one
-/// reported last. Only atomics on the hot path; the times take a short lock on a stage change.
-class ChannelProgress {
- public:
-  ChannelProgress(std::size_t channels, const pipeline::AxisAnalysisOptions& options,
-                  const AnalysisFeedback& feedback)
-      : feedback_(feedback),
-        done_(channels),
-        stage_(channels),
-        stage_start_(channels),
-        units_per_channel_(4 +
-                           (options.bootstrap_replicates >= 2 ? options.bootstrap_replicates : 0)),
-        channels_(static_cast<std::int64_t>(channels)) {
-    if (feedback_.bar != nullptr) feedback_.bar->set_items(0, channels_, "channels");
-  }
-
-  /// The callback of channel I (empty when nobody listens).
-  ProgressCallback callback(std::size_t i) {
-    if ((feedback_.bar == nullptr || !feedback_.bar->enabled()) &&
-        feedback_.channel_times == nullptr) {
-      return {};
-    }
-    return [this, i](std::string_view stage, std::int64_t done, std::int64_t) {
-      std::int64_t seen = done_[i].load();
-      while (done > seen && !done_[i].compare_exchange_weak(seen, done)) {
-      }
-      if (feedback_.channel_times != nullptr) time_stage(i, stage);
-      if (feedback_.bar != nullptr) {
-        std::int64_t sum = 0;
-        for (const auto& d : done_) sum += d.load();
-        feedback_.bar->update(stage, sum, units_per_channel_ * channels_);
-      }
-    };
-  }
-
-  void channel_finished() {
-    const std::int64_t finished = ++finished_;
-    if (feedback_.bar != nullptr) feedback_.bar->set_items(finished, channels_, "channels");
-  }
-
- private:
-  /// Closes the running stage of channel I when it changes (stages arrive in order per
-  /// channel; bootstrap replicates repeat the same stage).
-  void time_stage(std::size_t i, std::string_view stage) {
-    const auto now = std::chrono::steady_clock::now();
-    std::lock_guard<std::mutex> lock(times_mutex_);
-    if (stage_[i] == stage) return;
-    if (!stage_[i].empty()) {
-      feedback_.channel_times->add(stage_[i],
-                                   std::chrono::duration<double>(now - stage_start_[i]).count());
-    }
-    stage_[i].assign(stage);
-    stage_start_[i] = now;
-  }
-
-  const AnalysisFeedback feedback_;
-  std::vector<std::atomic<std::int64_t>> done_;
-  std::vector<std::string> stage_;  // under times_mutex_
-  std::vector<std::chrono::steady_clock::time_point> stage_start_;
-  std::mutex times_mutex_;
-  const std::int64_t units_per_channel_;
-  const std::int64_t channels_;
-  std::atomic<std::int64_t> finished_{0};
-};
 
 }  // namespace
 
@@ -201,7 +136,9 @@ pipeline::RecordingAnalysis run_with_feedback(const pipeline::Recording& recordi
   for (const char* name : pipeline::kImuChannelNames) {
     if (recording.find_channel(name) != nullptr) ++channels;
   }
-  ChannelProgress progress(channels, options.axis, feedback);
+  const std::int64_t units_per_channel =
+      4 + (options.axis.bootstrap_replicates >= 2 ? options.axis.bootstrap_replicates : 0);
+  io::ChannelProgress progress(channels, units_per_channel, feedback.bar, feedback.channel_times);
   pipeline::ChannelFeedback channel_feedback;
   channel_feedback.progress = [&progress](std::size_t i) { return progress.callback(i); };
   channel_feedback.channel_finished = [&progress] { progress.channel_finished(); };

@@ -15,7 +15,8 @@ class App;
 
 namespace imunoise::io {
 class ProgressBar;
-}
+class StageTimes;
+}  // namespace imunoise::io
 
 namespace imunoise::tools {
 
@@ -45,8 +46,6 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& settings);
 /// '…'" for another value.
 pipeline::GapPolicy gap_policy_option(const AnalysisSettings& settings);
 
-class StageTimes;
-
 /// What analyze_recording reports while it runs; every part is optional and none changes the
 /// result.
 struct AnalysisFeedback {
@@ -54,7 +53,7 @@ struct AnalysisFeedback {
   /// finishes it.
   io::ProgressBar* bar = nullptr;
   /// Wall seconds per stage (deviations, fit, PSD, bootstrap/intervals), summed over channels.
-  StageTimes* channel_times = nullptr;
+  io::StageTimes* channel_times = nullptr;
 };
 
 /// The pipeline's options of SETTINGS for a record of sample period TAU0_S, with the flags as

@@ -74,7 +74,7 @@ io::Series recording_series(const AllanArgs& args, const io::SeriesReadOptions& 
 }
 
 /// TIMES gets the wall time of reading and of the deviation.
-void run_allan(const AllanArgs& args, StageTimes& times) {
+void run_allan(const AllanArgs& args, io::StageTimes& times) {
   const auto type = analysis::parse_deviation_type(args.type);
   if (!type) throw InputError("unknown --type '" + args.type + "'");
   const bool tau0_given = args.tau0_option != nullptr && args.tau0_option->count() > 0;
@@ -205,7 +205,7 @@ void register_allan_command(CLI::App& app) {
       ->capture_default_str();
   add_verbosity_options(*cmd, args->verbosity);
   cmd->callback([args] {
-    StageTimes times;
+    io::StageTimes times;
     run_allan(*args, times);
     times.mark("output");
     print_timings(args->verbosity, "allan", times);

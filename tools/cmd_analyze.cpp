@@ -71,7 +71,7 @@ struct AnalyzeArgs {
 
 /// TIMES gets the wall time of reading, the analysis, the output files and the report (the
 /// caller adds what follows: the summary and publishing, as "outputs").
-void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
+void run_analyze(const AnalyzeArgs& args, io::StageTimes& times) {
   (void)gap_policy_option(args.analysis);    // a bad --gaps fails before the read
   import_fftw_wisdom_option(args.analysis);  // so does a bad wisdom file
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
@@ -93,7 +93,7 @@ void run_analyze(const AnalyzeArgs& args, StageTimes& times) {
   pipeline::Recording recording =
       read_input_recording(args.file, config, args.lcm, bar.callback(), args.analysis.threads);
   times.mark("read");
-  StageTimes channel_times;
+  io::StageTimes channel_times;
   pipeline::RecordingAnalysis result = analyze_recording_freeing_time_stamps(
       recording, args.file, args.analysis,
       {&bar, args.verbosity.verbose ? &channel_times : nullptr});
@@ -182,7 +182,7 @@ void register_analyze_command(CLI::App& app) {
       "(OADEV/OHDEV with intervals and the model ADEV, per axis), psd.csv (log-binned one-sided\n"
       "PSD with dof and the model PSD, per axis); units are part of every column name.");
   cmd->callback([args] {
-    StageTimes times;
+    io::StageTimes times;
     run_analyze(*args, times);
     times.mark("outputs");
     print_timings(args->verbosity, "analyze", times);

@@ -30,7 +30,7 @@ struct CheckArgs {
 
 void run_check(const CheckArgs& args) {
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
-  StageTimes times;
+  io::StageTimes times;
   io::ProgressBar bar("check", progress_wanted(args.verbosity));
   const pipeline::Recording recording =
       read_input_recording(args.file, config, args.lcm, bar.callback());

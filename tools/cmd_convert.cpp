@@ -56,7 +56,7 @@ void run_convert(const ConvertArgs& args) {
     throw InputError("--lcm-channel must not be empty");
   }
   const io::InputConfig config = resolve_input_config(args.flags, args.config_path);
-  StageTimes times;
+  io::StageTimes times;
   io::ProgressBar bar("convert", progress_wanted(args.verbosity));
   const pipeline::Recording recording =
       read_input_recording(args.input, config, args.lcm, bar.callback());

@@ -160,7 +160,7 @@ void register_discretize_command(CLI::App& app) {
       ->required();
   add_verbosity_options(*sub, args->verbosity);
   sub->callback([args] {
-    StageTimes times;
+    io::StageTimes times;
     run_discretize(*args);
     times.mark("load, discretize and write");
     print_timings(args->verbosity, "discretize", times);

@@ -17,7 +17,6 @@
 #include <vector>
 
 #include "common/errors.h"
-#include "common/number_text.h"
 #include "common/progress_callback.h"
 #include "common/units.h"
 #include "io/drift_files.h"
@@ -25,6 +24,7 @@
 #include "io/noise_model_yaml.h"
 #include "io/terminal_progress_bar.h"
 #include "pipeline/drift_run.h"
+#include "report/drift_summary_text.h"
 #include "report/write_report.h"
 #include "tools/commands.h"
 #include "tools/gm_convention_option.h"
@@ -98,41 +98,8 @@ pipeline::DriftRunOptions drift_options(const DriftArgs& a) {
   return o;
 }
 
-/// The summary on stdout.
-void print_drift_summary(const pipeline::DriftSummary& s) {
-  const bool mc = s.monte_carlo.has_value();
-  std::cout << "drift: " << s.protocol.segments << " segments of "
-            << significant_number_text(s.protocol.align_s) << " s alignment + "
-            << significant_number_text(s.protocol.navigation_s) << " s navigation, height hold\n";
-  if (!s.location.given)
-    std::cout << "location not given: assumed 45 deg N, 0 deg E, 0 m (--location LAT,LON,H)\n";
-  std::cout << "heading: " << s.protocol.heading << "\n";
-  if (!s.motion.stationary)
-    std::cout << "WARNING: not stationary (" << s.motion.reason << "), forced\n";
-  std::cout << "\n  time   predicted DRMS   actual RMS   ratio [95% CI]        mean NEES [95% band]"
-               "     coverage 1/2/3 sigma (exp. 39/86/99 %)"
-            << (mc ? "   MC RMS" : "") << "\n";
-  for (const auto& c : s.consistency) {
-    std::cout << "  " << significant_number_text(c.time_s) << " s   "
-              << significant_number_text(c.predicted_drms_m) << " m   "
-              << significant_number_text(c.actual_rms_m) << " m   "
-              << significant_number_text(c.rms_ratio, 3) << " ["
-              << significant_number_text(c.rms_ratio_ci_low, 3) << ", "
-              << significant_number_text(c.rms_ratio_ci_high, 3) << "]   "
-              << significant_number_text(c.mean_nees, 3) << " ["
-              << significant_number_text(c.nees_band_low, 3) << ", "
-              << significant_number_text(c.nees_band_high, 3) << "] "
-              << (c.nees_inside ? "inside" : "OUTSIDE") << "   "
-              << significant_number_text(100 * c.coverage[0], 3) << "/"
-              << significant_number_text(100 * c.coverage[1], 3) << "/"
-              << significant_number_text(100 * c.coverage[2], 3) << " %";
-    if (mc) std::cout << "   " << significant_number_text(*c.monte_carlo_radial_rms_m) << " m";
-    std::cout << "\n";
-  }
-}
-
 /// TIMES gets the wall time of each computing stage (the caller adds the outputs).
-void run_drift(const DriftArgs& a, StageTimes& times) {
+void run_drift(const DriftArgs& a, io::StageTimes& times) {
   io::ProgressBar bar("drift", progress_wanted(a.verbosity));
   if (a.location.size() != 3)
     throw InputError("--location: expected LAT,LON,H (deg, deg, m), got " +
@@ -170,7 +137,7 @@ void run_drift(const DriftArgs& a, StageTimes& times) {
   io::write_drift_envelope_csv((dir / "drift_envelope.csv").string(), result.series);
   io::write_drift_summary_json((dir / "drift_summary.json").string(), result.summary);
 
-  print_drift_summary(result.summary);
+  std::cout << report::drift_summary_text(result.summary);
   write_command_file(dir.string());
   const report::ReportOutput report = report::write_report(dir.string());
   std::cout << "\nwrote " << (dir / "drift_segments.csv").string()
@@ -225,7 +192,7 @@ void register_drift_command(CLI::App& app) {
   add_verbosity_options(*cmd, args->verbosity);
   cmd->callback([args, location] {
     args->location_given = location->count() > 0;
-    StageTimes times;
+    io::StageTimes times;
     run_drift(*args, times);
     times.mark("outputs");
     print_timings(args->verbosity, "drift", times);

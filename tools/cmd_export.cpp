@@ -138,7 +138,7 @@ void register_export_command(CLI::App& app) {
                   "output file (default: stdout); a directory for --to all");
   add_verbosity_options(*sub, args->verbosity);
   sub->callback([args, axis] {
-    StageTimes times;
+    io::StageTimes times;
     run_export(*args, axis->count() > 0);
     times.mark("load, select and write");
     print_timings(args->verbosity, "export", times);

@@ -151,7 +151,7 @@ void register_fftw_wisdom_command(CLI::App& app) {
       "Wisdom holds for this machine and this FFTW build only; analyze plans from it without\n"
       "measuring, and falls back to FFTW_ESTIMATE for a length it does not cover.");
   cmd->callback([args] {
-    StageTimes times;
+    io::StageTimes times;
     run_fftw_wisdom(*args);
     times.mark("plan, time and write");
     print_timings(args->verbosity, "fftw-wisdom", times);

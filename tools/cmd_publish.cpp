@@ -116,7 +116,7 @@ void register_publish_command(CLI::App& app) {
       "(README: LCM).");
   add_verbosity_options(*cmd, args->verbosity);
   cmd->callback([args] {
-    StageTimes times;
+    io::StageTimes times;
     run_publish(*args);
     times.mark("load and publish");
     print_timings(args->verbosity, "publish", times);

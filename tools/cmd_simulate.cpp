@@ -78,7 +78,7 @@ CLI::Validator number_check(bool strictly_positive) {
 }
 
 /// TIMES gets the wall time of the set-up and of generating + writing.
-void run_simulate(const SimulateArgs& args, StageTimes& times) {
+void run_simulate(const SimulateArgs& args, io::StageTimes& times) {
   // 1. Load and merge; every check happens before the output file is opened.
   SimulationSetup setup;
   setup.source = "command-line flags";
@@ -222,7 +222,7 @@ void register_simulate_command(CLI::App& app) {
       "      -o rec.csv\n");
   add_verbosity_options(*sub, args->verbosity);
   sub->callback([args] {
-    StageTimes times;
+    io::StageTimes times;
     run_simulate(*args, times);
     print_timings(args->verbosity, "simulate", times);
   });

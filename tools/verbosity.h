@@ -5,12 +5,9 @@
 /// stage. Stdout never changes with either flag.
 #pragma once
 
-#include <chrono>
-#include <mutex>
-#include <string>
 #include <string_view>
-#include <utility>
-#include <vector>
+
+#include "io/stage_progress.h"
 
 namespace CLI {
 class App;
@@ -37,28 +34,8 @@ void print_info(const Verbosity& verbosity, std::string_view command, std::strin
 /// "imunoise COMMAND: LINE" on stderr with --verbose only (extra detail).
 void print_detail(const Verbosity& verbosity, std::string_view command, std::string_view line);
 
-/// Wall seconds per named stage, in the order first seen. Thread-safe (add() may come from
-/// worker threads; the lock is held only to add a number).
-class StageTimes {
- public:
-  StageTimes();
-  /// Adds `seconds` to `stage`.
-  void add(std::string_view stage, double seconds);
-  /// Adds the wall time since the previous mark (or construction) to `stage`.
-  void mark(std::string_view stage);
-  /// Seconds since construction.
-  double elapsed_s() const;
-  /// "read 0.52 s, deviations 3.1 s" (empty when nothing was added).
-  std::string text() const;
-
- private:
-  mutable std::mutex mutex_;
-  std::vector<std::pair<std::string, double>> stages_;
-  std::chrono::steady_clock::time_point start_;
-  std::chrono::steady_clock::time_point last_mark_;
-};
-
 /// With --verbose: "imunoise COMMAND: wall time: read 0.5 s, … (total 4.6 s)".
-void print_timings(const Verbosity& verbosity, std::string_view command, const StageTimes& times);
+void print_timings(const Verbosity& verbosity, std::string_view command,
+                   const io::StageTimes& times);
 
 }  // namespace imunoise::tools

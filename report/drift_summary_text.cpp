@@ -1,0 +1,45 @@
+/// @file
+/// @brief The terminal summary of `imunoise drift` (see drift_summary_text.h).
+#include "report/drift_summary_text.h"
+
+#include <sstream>
+
+#include "common/number_text.h"
+
+namespace imunoise::report {
+
+std::string drift_summary_text(const pipeline::DriftSummary& s) {
+  const bool mc = s.monte_carlo.has_value();
+  std::ostringstream out;
+  out << "drift: " << s.protocol.segments << " segments of "
+      << significant_number_text(s.protocol.align_s) << " s alignment + "
+      << significant_number_text(s.protocol.navigation_s) << " s navigation, height hold\n";
+  if (!s.location.given)
+    out << "location not given: assumed 45 deg N, 0 deg E, 0 m (--location LAT,LON,H)\n";
+  out << "heading: " << s.protocol.heading << "\n";
+  if (!s.motion.stationary) out << "WARNING: not stationary (" << s.motion.reason << "), forced\n";
+  out << "\n  time   predicted DRMS   actual RMS   ratio [95% CI]        mean NEES [95% band]"
+         "     coverage 1/2/3 sigma (exp. 39/86/99 %)"
+      << (mc ? "   MC RMS" : "") << "\n";
+  for (const pipeline::DriftConsistency& c : s.consistency) {
+    out << "  " << significant_number_text(c.time_s) << " s   "
+        << significant_number_text(c.predicted_drms_m) << " m   "
+        << significant_number_text(c.actual_rms_m) << " m   "
+        << significant_number_text(c.rms_ratio, 3) << " ["
+        << significant_number_text(c.rms_ratio_ci_low, 3) << ", "
+        << significant_number_text(c.rms_ratio_ci_high, 3) << "]   "
+        << significant_number_text(c.mean_nees, 3) << " ["
+        << significant_number_text(c.nees_band_low, 3) << ", "
+        << significant_number_text(c.nees_band_high, 3) << "] "
+        << (c.nees_inside ? "inside" : "OUTSIDE") << "   "
+        << significant_number_text(100 * c.coverage[0], 3) << "/"
+        << significant_number_text(100 * c.coverage[1], 3) << "/"
+        << significant_number_text(100 * c.coverage[2], 3) << " %";
+    if (mc && c.monte_carlo_radial_rms_m)
+      out << "   " << significant_number_text(*c.monte_carlo_radial_rms_m) << " m";
+    out << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace imunoise::report

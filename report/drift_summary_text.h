@@ -1,0 +1,17 @@
+/// @file
+/// @brief The summary `imunoise drift` prints on the terminal: the protocol, the assumed
+/// location and heading, then per report time the predicted DRMS, the recording's RMS, their
+/// ratio with its 95 % interval, the mean NEES with its band, the 1/2/3-σ coverage and the
+/// Monte Carlo RMS when it ran (theory.md §7.7). Pure: a summary in, text out.
+#pragma once
+
+#include <string>
+
+#include "pipeline/drift_run.h"
+
+namespace imunoise::report {
+
+/// The terminal summary of SUMMARY; every line ends with '\n'.
+std::string drift_summary_text(const pipeline::DriftSummary& summary);
+
+}  // namespace imunoise::report
