@@ -200,6 +200,41 @@ TEST(Layering, TestsLinkTheLayersNeverTools) {
   }
 }
 
+TEST(Layering, TheModuleMapOfDocsArchitectureIsTrue) {
+  // Every public header of a layer is in the map (as `dir/name` or `dir/name.h`), and every
+  // module the map names exists.
+  std::ifstream in(kRoot / "docs" / "architecture.md");
+  ASSERT_TRUE(in) << "docs/architecture.md";
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  for (const auto& [folder, unused] : allowed_includes()) {
+    (void)unused;
+    for (const fs::path& file : sources_in(folder)) {
+      if (file.extension() != ".h" || file.stem().string().ends_with("_internal")) continue;
+      const std::string module = repo_path(file.parent_path() / file.stem());
+      EXPECT_TRUE(doc.find("`" + module + "`") != std::string::npos ||
+                  doc.find("`" + module + ".h`") != std::string::npos)
+          << module << " is missing from the module map of docs/architecture.md";
+    }
+  }
+  const std::size_t map = doc.find("\n## Module map");
+  ASSERT_NE(map, std::string::npos) << "docs/architecture.md has no '## Module map'";
+  const std::size_t end = doc.find("\n## ", map + 1);
+  static const std::regex row(R"re(\n\| `([a-z]+/[a-z0-9_]+)(\.h|\.h\.in|\.cpp)?` \|)re");
+  const std::string section = doc.substr(map, end == std::string::npos ? end : end - map);
+  for (auto it = std::sregex_iterator(section.begin(), section.end(), row);
+       it != std::sregex_iterator(); ++it) {
+    const std::string module = (*it)[1];
+    const std::string ext = (*it)[2];
+    const bool exists =
+        ext.empty() ? fs::exists(kRoot / (module + ".h")) || fs::exists(kRoot / (module + ".cpp"))
+                    : fs::exists(kRoot / (module + ext));
+    EXPECT_TRUE(exists) << "docs/architecture.md names " << module << ext
+                        << ", which does not exist";
+  }
+}
+
 TEST(Layering, ToolsStayFlagParsingAndAThinMain) {
   // A command file holds its flags, their checks and the calls into the layers: a few hundred
   // lines. Together the commands stay smaller than the application layer they call.
