@@ -1,12 +1,15 @@
 #include "pipeline/bootstrap.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 
 #include "analysis/chi_square.h"
 #include "analysis/deviation.h"
 #include "analysis/noise_terms.h"
+#include "analysis/variance_covariance.h"
 #include "common/errors.h"
 #include "common/huge_pages.h"
 #include "common/parallel_for.h"
@@ -53,6 +56,56 @@ std::uint64_t replicate_seed(std::uint64_t seed, int replicate) {
   return z ^ (z >> 31);
 }
 
+/// The joint distribution of the OAVAR estimates at USED_M under MODEL, ready to draw from:
+/// the expectations, the EDF and the Cholesky factor of the correlation matrix.
+class VarianceDraw {
+ public:
+  VarianceDraw(const NoiseCoefficients& model, double tau0_s, std::int64_t n_samples,
+               std::span<const std::int64_t> used_m)
+      : moments_(analysis::overlapping_variance_covariance(model, tau0_s, n_samples, used_m)) {
+    const Eigen::Index n = moments_.covariance.rows();
+    Eigen::MatrixXd correlation(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (Eigen::Index j = 0; j < n; ++j) {
+        correlation(i, j) = moments_.covariance(i, j) /
+                            std::sqrt(moments_.covariance(i, i) * moments_.covariance(j, j));
+      }
+    }
+    // Neighbouring τ of a dense grid correlate to within rounding of 1: a little ridge keeps
+    // the factor real (1e−12 of the diagonal changes no draw visibly).
+    for (double ridge = 0.0;; ridge = ridge == 0.0 ? 1e-12 : ridge * 10.0) {
+      Eigen::LLT<Eigen::MatrixXd> llt(correlation + ridge * Eigen::MatrixXd::Identity(n, n));
+      if (llt.info() == Eigen::Success) {
+        factor_ = llt.matrixL();
+        break;
+      }
+      IMUNOISE_EXPECT(ridge < 1e-3, "bootstrap: the variance correlation is not positive definite");
+    }
+  }
+
+  /// One draw of the OAVAR estimates into AVAR (size of USED_M), from the normals of NORMAL.
+  void draw(models::StandardNormal& normal, std::span<double> avar) const {
+    const Eigen::Index n = factor_.rows();
+    Eigen::VectorXd u(n);
+    for (Eigen::Index i = 0; i < n; ++i) u(i) = normal();
+    const Eigen::VectorXd z = factor_.triangularView<Eigen::Lower>() * u;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double nu = moments_.edf[static_cast<std::size_t>(i)];
+      // Φ(z) and its complement from erfc, so neither tail loses digits.
+      const double zi = z(i);
+      const double chi2 =
+          zi <= 0.0 ? analysis::chi_square_quantile(0.5 * std::erfc(-zi / std::sqrt(2.0)), nu)
+                    : analysis::chi_square_upper_quantile(0.5 * std::erfc(zi / std::sqrt(2.0)), nu);
+      avar[static_cast<std::size_t>(i)] =
+          moments_.expected[static_cast<std::size_t>(i)] * chi2 / nu;
+    }
+  }
+
+ private:
+  analysis::VarianceCovariance moments_;
+  Eigen::MatrixXd factor_;
+};
+
 }  // namespace
 
 BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
@@ -82,6 +135,10 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
   std::vector<std::int64_t> used_m;
   for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
 
+  const bool simulate = options.source == ReplicateSource::simulated_record;
+  std::optional<VarianceDraw> variance_draw;
+  if (!simulate) variance_draw.emplace(fit.coefficients, tau0_s, n_samples, used_m);
+
   // Per worker: one array the record's size, the simulated rate turned into phase in place,
   // so a worker holds 8 bytes per sample (a 24 h record at 1 kHz: 0.7 GB), not 16; and the
   // fit points the replicate's AVAR is written into.
@@ -91,14 +148,25 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
   };
   const auto make_scratch = [&] {
     Scratch s;
-    reserve_huge_pages(s.samples, static_cast<std::size_t>(n_samples) + 1);
+    if (simulate) reserve_huge_pages(s.samples, static_cast<std::size_t>(n_samples) + 1);
     s.points.assign(points.begin(), points.end());
     return s;
   };
-  const auto replicate = [&](Scratch& scratch, std::size_t r) {
+  // The OAVAR of replicate R at the τ of FIT.used, written into SCRATCH.points.
+  const auto variances = [&](Scratch& scratch, std::size_t r) {
+    const std::uint64_t seed = replicate_seed(options.seed, static_cast<int>(r));
+    if (!simulate) {
+      models::StandardNormal normal{models::Xoshiro256PlusPlus(seed)};
+      scratch.samples.resize(used_m.size());
+      variance_draw->draw(normal, scratch.samples);
+      for (std::size_t i = 0; i < fit.used.size(); ++i) {
+        scratch.points[fit.used[i]].avar = scratch.samples[i];
+      }
+      return;
+    }
     models::SimulationOptions sim;
     sim.sample_rate_hz = 1.0 / tau0_s;
-    sim.seed = replicate_seed(options.seed, static_cast<int>(r));
+    sim.seed = seed;
     sim.flicker_band = {tau0_s, std::max(duration_s, 2.0 * tau0_s)};
     models::ChannelSimulator simulator(channel, sim, 0);
     std::vector<double>& samples = scratch.samples;
@@ -112,6 +180,9 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
     for (std::size_t i = 0; i < fit.used.size(); ++i) {
       scratch.points[fit.used[i]].avar = avar[i].variance;
     }
+  };
+  const auto replicate = [&](Scratch& scratch, std::size_t r) {
+    variances(scratch, r);
     Replicate& out = results[r];
     try {
       const analysis::FitResult refit =

@@ -17,9 +17,21 @@
 
 namespace imunoise::pipeline {
 
+/// Where a replicate's variances come from.
+enum class ReplicateSource {
+  /// Simulate the fitted model at the record's length and rate (models::ChannelSimulator) and
+  /// compute its OAVAR: the reference, at a cost proportional to the record per replicate.
+  simulated_record,
+  /// Draw the vector of OAVAR estimates from its distribution under the fitted model
+  /// (analysis/variance_covariance.h): the model's correlation across τ through a Gaussian
+  /// copula, each margin σ²·χ²_ν/ν with the model's EDF ν. Cost independent of the record.
+  variance_distribution,
+};
+
 /// Settings of one bootstrap.
 struct BootstrapOptions {
-  int replicates = 50;       ///< number of simulated records
+  ReplicateSource source = ReplicateSource::simulated_record;
+  int replicates = 50;       ///< number of replicates
   std::uint64_t seed = 1;    ///< master seed; replicate r uses (seed, r)
   double confidence = 0.95;  ///< two-sided level of the intervals
   unsigned threads = 1;      ///< worker threads across replicates
@@ -44,9 +56,10 @@ struct BootstrapResult {
 /// Bootstraps FIT (made by analysis::fit_noise_model on POINTS, whose τ are m·τ0 with the
 /// averaging factors M_LIST) for a record of N_SAMPLES rate samples at τ0 = TAU0_S.
 ///
-/// Each replicate simulates FIT's coefficients with models::ChannelSimulator (flicker band
-/// [τ0, record length]), computes the OAVAR at M_LIST, reuses the EDF of POINTS (the weights
-/// are model-based, theory.md §4.3), and refits with analysis::refit_fixed_terms. The interval
+/// Each replicate gets OAVAR values at the M_LIST of FIT.used from options.source (simulated:
+/// FIT's coefficients with models::ChannelSimulator, flicker band [τ0, record length]), reuses
+/// the EDF of POINTS (the weights are model-based, theory.md §4.3), and refits with
+/// analysis::refit_fixed_terms. The interval
 /// of an identified term is the bias-corrected normal interval of ln θ (a scale parameter's
 /// error is multiplicative) with Student's t for the replicate count, or the same in the
 /// linear domain clipped at 0 when a replicate is 0.
