@@ -11,6 +11,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "ins/earth_model.h"
+#include "ins/frames.h"
 #include "models/state_space.h"
 
 namespace imunoise::ins {
@@ -22,12 +23,6 @@ using Eigen::Vector3d;
 using Layout = ErrorStateLayout;
 
 constexpr double kMaxSteps = 1e8;  ///< guard against an output time of ~forever
-
-Matrix3d skew(const Vector3d& a) {
-  Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 void check_options(const DriftPredictionOptions& o) {
   IMUNOISE_CHECK(std::isfinite(o.step_s) && o.step_s > 0.0, InputError,

@@ -9,6 +9,7 @@
 
 #include "common/errors.h"
 #include "ins/earth_model.h"
+#include "ins/frames.h"
 
 namespace imunoise::ins {
 namespace {
@@ -17,13 +18,6 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Layout = ErrorStateLayout;
 using NavigationMatrix = Eigen::Matrix<double, 9, 9>;
-
-/// [a×], the matrix of the cross product a × (·).
-Matrix3d skew(const Vector3d& a) {
-  Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 /// The 9×9 navigation block of F in (δψ, δv^n, δr^n metres NED); see the header for the
 /// equations. Position is handled as p = (L, λ, h) first (Groves 14.64–14.71 with the
