@@ -42,7 +42,7 @@ const std::string& bench_imnb() {
     for (std::size_t c = 0; c < 6; ++c) {
       imunoise::pipeline::Channel ch;
       ch.name = names[c];
-      ch.unit = c < 3 ? "rad/s" : "m/s^2";
+      ch.kind = imunoise::pipeline::kImuChannelKinds[c];
       ch.values.resize(kSamples);
       const double scale = c < 3 ? 1e-3 : 2e-2;
       for (double& v : ch.values) v = scale * noise(rng);

@@ -35,6 +35,20 @@ constexpr std::string_view psd_unit_suffix(SensorKind kind) {
   return kind == SensorKind::gyro ? "rad2_per_s2_per_hz" : "m2_per_s4_per_hz";
 }
 
+/// The kind sensor_name() spells NAME ("gyro" or "accel", exactly); empty for any other text.
+constexpr std::optional<SensorKind> parse_sensor_name(std::string_view name) {
+  if (name == sensor_name(SensorKind::gyro)) return SensorKind::gyro;
+  if (name == sensor_name(SensorKind::accel)) return SensorKind::accel;
+  return std::nullopt;
+}
+
+/// The kind whose si_rate_unit() is UNIT ("rad/s" or "m/s^2", exactly); empty for other text.
+constexpr std::optional<SensorKind> parse_si_rate_unit(std::string_view unit) {
+  if (unit == si_rate_unit(SensorKind::gyro)) return SensorKind::gyro;
+  if (unit == si_rate_unit(SensorKind::accel)) return SensorKind::accel;
+  return std::nullopt;
+}
+
 /// The kind of a channel named "gyro…" or "accel…" (gyro_x … accel_z); empty for other names.
 constexpr std::optional<SensorKind> sensor_kind_of_channel(std::string_view channel_name) {
   if (channel_name.starts_with("gyro")) return SensorKind::gyro;

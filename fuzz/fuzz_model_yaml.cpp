@@ -51,8 +51,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // As `imunoise simulate` does with it: channel models, the simulator, a first block.
     models::ImuNoiseModel model;
     for (std::size_t a = 0; a < 3; ++a) {
-      (void)io::si_terms_text(file.gyro[a], io::Sensor::kGyro);
-      (void)io::si_terms_text(file.accel[a], io::Sensor::kAccel);
+      (void)io::si_terms_text(file.gyro[a], SensorKind::gyro);
+      (void)io::si_terms_text(file.accel[a], SensorKind::accel);
       model.gyro[a] = io::channel_model(file.gyro[a]);
       model.accel[a] = io::channel_model(file.accel[a]);
       models::validate_channel_model(model.gyro[a], "gyro");

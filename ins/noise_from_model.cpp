@@ -24,7 +24,7 @@ SensorAxisNoise axis_noise(const models::SensorAxisParameters& p) {
 
 InsSensorNoise ins_sensor_noise(const models::NoiseModel& model, const InsNoiseOptions& options) {
   int gyro_axes = 0, accel_axes = 0;
-  for (const auto& axis : model.axes) (axis.gyro ? gyro_axes : accel_axes) += 1;
+  for (const auto& axis : model.axes) (axis.kind == SensorKind::gyro ? gyro_axes : accel_axes) += 1;
   IMUNOISE_CHECK(gyro_axes == 3 && accel_axes == 3, InputError,
                  "ins_sensor_noise: the INS error state needs three gyro and three accel axes; "
                  "the model has " +

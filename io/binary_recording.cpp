@@ -15,11 +15,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <span>
 #include <utility>
 
 #include "common/errors.h"
 #include "common/huge_pages.h"
 #include "common/parallel_for.h"
+#include "common/sensor_kind.h"
 #include "io/atomic_output.h"
 #include "io/sampling_report.h"
 
@@ -56,17 +58,20 @@ bool is_finite_bits(double v) {
 
 std::string describe_non_finite(double v) { return std::isnan(v) ? "NaN" : "Inf"; }
 
-/// The SI unit a standard channel must have; nullopt for extra channels.
-std::optional<std::string_view> standard_unit(std::string_view name) {
+/// The kind a standard channel must have; nullopt for extra channels.
+std::optional<SensorKind> standard_kind(std::string_view name) {
   for (std::size_t c = 0; c < pipeline::kImuChannelNames.size(); ++c) {
-    if (name == pipeline::kImuChannelNames[c]) return c < 3 ? "rad/s" : "m/s^2";
+    if (name == pipeline::kImuChannelNames[c]) return pipeline::kImuChannelKinds[c];
   }
   return std::nullopt;
 }
 
 /// Checks what the reader requires of a header; throws via MAKE_ERROR(key, message).
+/// UNIT_TEXTS: the `unit` of each channel as the file spells it (empty for a header built in
+/// memory, whose kinds need no parse).
 template <class MakeError>
-void validate_header(const BinaryRecordingHeader& h, MakeError&& make_error) {
+void validate_header(const BinaryRecordingHeader& h, MakeError&& make_error,
+                     std::span<const std::string> unit_texts = {}) {
   if (!(std::isfinite(h.sample_period_s) && h.sample_period_s > 0.0)) {
     throw make_error("sample_period_s", "must be a finite number > 0");
   }
@@ -93,13 +98,14 @@ void validate_header(const BinaryRecordingHeader& h, MakeError&& make_error) {
     if (!names.insert(c.name).second) {
       throw make_error(where + ".name", "duplicate channel name '" + c.name + "'");
     }
-    if (c.unit != "rad/s" && c.unit != "m/s^2" && !c.unit.empty()) {
-      throw make_error(where + ".unit",
-                       "unknown unit '" + c.unit + "' (expected \"rad/s\", \"m/s^2\" or \"\")");
+    if (i < unit_texts.size() && !unit_texts[i].empty() && !parse_si_rate_unit(unit_texts[i])) {
+      throw make_error(where + ".unit", "unknown unit '" + unit_texts[i] +
+                                            "' (expected \"rad/s\", \"m/s^2\" or \"\")");
     }
-    if (const auto unit = standard_unit(c.name); unit && c.unit != *unit) {
+    if (const auto kind = standard_kind(c.name); kind && c.kind != *kind) {
       throw make_error(where + ".unit", "channel '" + c.name + "' must be in \"" +
-                                            std::string(*unit) + "\", not \"" + c.unit + "\"");
+                                            std::string(si_rate_unit(*kind)) + "\", not \"" +
+                                            std::string(c.unit()) + "\"");
     }
   }
 }
@@ -118,7 +124,7 @@ Json header_json(const BinaryRecordingHeader& h) {
   Json channels = Json::array();
   for (const pipeline::Channel& c : h.channels) {
     channels.push_back(Json{{"name", c.name},
-                            {"unit", c.unit},
+                            {"unit", c.unit()},
                             {"source_column", c.source_column},
                             {"source_unit", c.source_unit},
                             {"from_increments", c.from_increments}});
@@ -219,6 +225,7 @@ BinaryRecordingHeader parse_header_json(const std::string& path, const std::stri
   h.rows_dropped = top.optional_count("rows_dropped");
   const Json& channels = top.require("channels");
   if (!channels.is_array()) throw key_error(path, "channels", "expected an array");
+  std::vector<std::string> unit_texts;
   for (std::size_t i = 0; i < channels.size(); ++i) {
     const std::string prefix = "channels[" + std::to_string(i) + "].";
     if (!channels[i].is_object()) {
@@ -227,7 +234,8 @@ BinaryRecordingHeader parse_header_json(const std::string& path, const std::stri
     ObjectReader ch(path, channels[i], prefix);
     pipeline::Channel c;
     c.name = ch.text("name");
-    c.unit = ch.text("unit");
+    unit_texts.push_back(ch.text("unit"));
+    c.kind = parse_si_rate_unit(unit_texts.back());  // other text: refused by validate_header
     c.source_column = ch.text("source_column");
     c.source_unit = ch.text("source_unit");
     c.from_increments = ch.boolean("from_increments");
@@ -235,9 +243,12 @@ BinaryRecordingHeader parse_header_json(const std::string& path, const std::stri
     h.channels.push_back(std::move(c));
   }
   top.finish();
-  validate_header(h, [&](const std::string& key, const std::string& message) {
-    return key_error(path, key, message);
-  });
+  validate_header(
+      h,
+      [&](const std::string& key, const std::string& message) {
+        return key_error(path, key, message);
+      },
+      unit_texts);
   return h;
 }
 
@@ -398,7 +409,7 @@ BinaryRecordingHeader binary_header_of(const pipeline::Recording& recording) {
   h.rows_dropped = recording.report.rows_dropped;
   for (const pipeline::Channel& c : recording.channels) {
     h.channels.push_back(
-        pipeline::Channel{c.name, c.unit, {}, c.source_column, c.source_unit, c.from_increments});
+        pipeline::Channel{c.name, c.kind, {}, c.source_column, c.source_unit, c.from_increments});
   }
   return h;
 }

@@ -54,7 +54,9 @@ constexpr WhiteNoiseKeys kGyroWhiteKeys{"density_rad_per_sqrt_s", "rate_sigma_ra
                                         "increment_sigma_rad"};
 constexpr WhiteNoiseKeys kAccelWhiteKeys{"density_m_per_s_sqrt_s", "rate_sigma_m_per_s2",
                                          "increment_sigma_m_per_s"};
-const WhiteNoiseKeys& white_keys(bool gyro) { return gyro ? kGyroWhiteKeys : kAccelWhiteKeys; }
+const WhiteNoiseKeys& white_keys(SensorKind kind) {
+  return kind == SensorKind::gyro ? kGyroWhiteKeys : kAccelWhiteKeys;
+}
 /// @}
 
 // ---------------------------------------------------------------------------------------
@@ -241,12 +243,13 @@ template <class Value>
 pipeline::WhiteNoiseInput read_white_noise(const Value& entry) {
   pipeline::WhiteNoiseInput w;
   w.axis = require(entry, kAxisKey).text();
-  w.gyro = entry.find(kGyroWhiteKeys.density).has_value();
-  if (!w.gyro && !entry.find(kAccelWhiteKeys.density)) {
+  // The kind is spelled by the unit of the density key.
+  w.kind = entry.find(kGyroWhiteKeys.density) ? SensorKind::gyro : SensorKind::accel;
+  if (w.kind == SensorKind::accel && !entry.find(kAccelWhiteKeys.density)) {
     entry.fail(std::string("missing required key '") + kGyroWhiteKeys.density + "' or '" +
                kAccelWhiteKeys.density + "'");
   }
-  const WhiteNoiseKeys& keys = white_keys(w.gyro);
+  const WhiteNoiseKeys& keys = white_keys(w.kind);
   w.density = require(entry, keys.density).number();
   w.rate_sigma = require(entry, keys.rate_sigma).number();
   w.increment_sigma = require(entry, keys.increment_sigma).number();
@@ -326,7 +329,7 @@ std::string format_discrete_model_yaml(const DiscreteModelFile& file) {
   y << "  " << kQcKey << ":" << matrix_yaml(continuous.Qc, "    ");
   y << kWhiteNoiseKey << ":  # inputs, not states: per-sample sigma for rates and for increments\n";
   for (const auto& w : file.white_noise) {
-    const WhiteNoiseKeys& keys = white_keys(w.gyro);
+    const WhiteNoiseKeys& keys = white_keys(w.kind);
     y << "  - {" << kAxisKey << ": " << w.axis << ", " << keys.density << ": "
       << shortest_number_text(w.density) << ", " << keys.rate_sigma << ": "
       << shortest_number_text(w.rate_sigma) << ", " << keys.increment_sigma << ": "
@@ -340,7 +343,7 @@ std::string format_discrete_model_json(const DiscreteModelFile& file) {
   const models::DiscreteStateModel& discrete = file.discrete;
   nlohmann::json white_json = nlohmann::json::array();
   for (const auto& w : file.white_noise) {
-    const WhiteNoiseKeys& keys = white_keys(w.gyro);
+    const WhiteNoiseKeys& keys = white_keys(w.kind);
     white_json.push_back({{kAxisKey, w.axis},
                           {keys.density, w.density},
                           {keys.rate_sigma, w.rate_sigma},

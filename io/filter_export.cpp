@@ -9,6 +9,7 @@
 
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "common/sensor_kind.h"
 #include "common/units.h"
 #include "io/noise_model_yaml.h"
 
@@ -120,10 +121,10 @@ class Config {
   std::vector<std::string> conversions_;
 };
 
-const SensorParameters& need(const std::optional<SensorParameters>& s, bool gyro,
+const SensorParameters& need(const std::optional<SensorParameters>& s, SensorKind kind,
                              ExportFormat format) {
   if (!s)
-    throw InputError(std::string("the model has no ") + (gyro ? "gyro" : "accel") + " axes; " +
+    throw InputError(std::string("the model has no ") + std::string(sensor_name(kind)) + " axes; " +
                      std::string(export_format_name(format)) + " needs both sensors");
   return *s;
 }
@@ -139,8 +140,8 @@ struct RwOnly {
   double n_g, k_g, n_a, k_a;
 };
 RwOnly rw_only(const FilterParameters& p, Config& c, ExportFormat format, bool conservative) {
-  const auto& g = need(p.gyro, true, format).one();
-  const auto& a = need(p.accel, false, format).one();
+  const auto& g = need(p.gyro, SensorKind::gyro, format).one();
+  const auto& a = need(p.accel, SensorKind::accel, format).one();
   c.line(conservative
              ? "this format has white noise and a random-walk bias only: B, GM, Q and R are "
                "folded into N and K (rule above)"
@@ -351,8 +352,8 @@ void gm_lines(Config& c, const SensorParameters& g, const SensorParameters& a, b
 
 std::string kf_gins(const models::NoiseModel& model, const ExportRequest& request,
                     const FilterParameters& p, double rate) {
-  const auto& g = need(p.gyro, true, request.format);
-  const auto& a = need(p.accel, false, request.format);
+  const auto& g = need(p.gyro, SensorKind::gyro, request.format);
+  const auto& a = need(p.accel, SensorKind::accel, request.format);
   Config c("#", model, request, rate);
   c.rules(p);
   gm_lines(c, g, a, request.parameters.conservative);
@@ -395,8 +396,8 @@ std::string kf_gins(const models::NoiseModel& model, const ExportRequest& reques
 
 std::string gnss_ins_sim(const models::NoiseModel& model, const ExportRequest& request,
                          const FilterParameters& p, double rate) {
-  const auto& g = need(p.gyro, true, request.format);
-  const auto& a = need(p.accel, false, request.format);
+  const auto& g = need(p.gyro, SensorKind::gyro, request.format);
+  const auto& a = need(p.accel, SensorKind::accel, request.format);
   Config c("#", model, request, rate);
   c.rules(p);
   gm_lines(c, g, a, request.parameters.conservative);
@@ -448,14 +449,14 @@ std::string matlab(const models::NoiseModel& model, const ExportRequest& request
       "NoiseDensity = N, BiasInstability = B, RandomWalk = K, all SI; imuSensor's default "
       "NoiseType 'double-sided' matches the two-sided N");
   c.line("Q (quantization), R (ramp) and GM terms are not carried by gyroparams/accelparams");
-  const auto block = [&](const std::optional<SensorParameters>& s, bool gyro) {
+  const auto block = [&](const std::optional<SensorParameters>& s) {
     if (!s) return;
-    const std::string fn = gyro ? "gyroparams" : "accelparams";
-    const std::string var = gyro ? "gyro" : "accel";
-    const std::string nu = gyro ? "(rad/s)/sqrt(Hz)" : "(m/s^2)/sqrt(Hz)";
-    const std::string bu = gyro ? "rad/s" : "m/s^2";
-    const std::string ku = gyro ? "(rad/s)*sqrt(Hz)" : "(m/s^2)*sqrt(Hz)";
-    const std::string sub = gyro ? "_g" : "_a";
+    const std::string var(sensor_name(s->kind));  // gyro, accel
+    const std::string fn = var + "params";
+    const std::string bu(si_rate_unit(s->kind));
+    const std::string nu = "(" + bu + ")/sqrt(Hz)";
+    const std::string ku = "(" + bu + ")*sqrt(Hz)";
+    const std::string sub = s->kind == SensorKind::gyro ? "_g" : "_a";
     for (int i = 0; i < 3; ++i) {
       const std::string ix = bracketed(i + 1, '(', ')');
       c.conversion(var + ".NoiseDensity" + ix, "N" + sub, s->axes[i].white_noise, nu);
@@ -471,8 +472,8 @@ std::string matlab(const models::NoiseModel& model, const ExportRequest& request
     b << "    'RandomWalk', [" << triple(*s, &SensorAxisParameters::random_walk, 1.0, " ")
       << "]);  % " << ku << "\n";
   };
-  block(p.gyro, true);
-  block(p.accel, false);
+  block(p.gyro);
+  block(p.accel);
   if (!p.gyro && !p.accel) throw InputError("the model has no axes");
   return c.text();
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/sensor_kind.h"
 #include "io/csv_reader.h"
 #include "pipeline/sampling_checks.h"
 
@@ -261,12 +262,12 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
   }
 
   std::size_t next = first_channel_request;
-  const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
-                               double factor, bool increments) {
+  const auto add_channel = [&](std::string name, std::optional<SensorKind> kind,
+                               std::string source_unit, double factor, bool increments) {
     const std::size_t column = requests[next].index;
     pipeline::Channel ch;
     ch.name = std::move(name);
-    ch.unit = std::move(unit);
+    ch.kind = kind;
     ch.source_unit = std::move(source_unit);
     ch.source_column = layout.has_header() && !layout.column_names[column].empty()
                            ? layout.column_names[column]
@@ -283,19 +284,20 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     const bool inc = is_increment(gyro->unit);
     const double factor = si_factor(gyro->unit) / (inc ? rec.sample_period_s : 1.0);
     for (std::size_t a = 0; a < gyro->columns.size(); ++a) {
-      add_channel("gyro_" + std::string(kAxes[a]), "rad/s", std::string(to_string(gyro->unit)),
-                  factor, inc);
+      add_channel("gyro_" + std::string(kAxes[a]), SensorKind::gyro,
+                  std::string(to_string(gyro->unit)), factor, inc);
     }
   }
   if (accel) {
     const bool inc = is_increment(accel->unit);
     const double factor = si_factor(accel->unit) / (inc ? rec.sample_period_s : 1.0);
     for (std::size_t a = 0; a < accel->columns.size(); ++a) {
-      add_channel("accel_" + std::string(kAxes[a]), "m/s^2", std::string(to_string(accel->unit)),
-                  factor, inc);
+      add_channel("accel_" + std::string(kAxes[a]), SensorKind::accel,
+                  std::string(to_string(accel->unit)), factor, inc);
     }
   }
-  for (const ExtraColumn& e : config.extra_columns) add_channel(e.name, "", "", 1.0, false);
+  for (const ExtraColumn& e : config.extra_columns)
+    add_channel(e.name, std::nullopt, "", 1.0, false);
 
   rec.report.samples = static_cast<std::int64_t>(n);
   rec.report.timing = timing;

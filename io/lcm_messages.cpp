@@ -105,7 +105,7 @@ imunoise::noise_model_t noise_model_message(const models::NoiseModel& model,
 
   for (const models::AxisModel& axis : model.axes) {
     msg.axis_names.push_back(axis.name);
-    msg.is_gyro.push_back(axis.gyro ? 1 : 0);
+    msg.is_gyro.push_back(axis.kind == SensorKind::gyro ? 1 : 0);
     for (std::size_t t = 0; t < 5; ++t) {
       const models::Estimate& e = axis.terms[t];
       terms[t].value->push_back(e.value);
@@ -149,7 +149,7 @@ models::NoiseModel noise_model_from_message(const imunoise::noise_model_t& msg) 
   for (std::size_t i = 0; i < n; ++i) {
     models::AxisModel axis;
     axis.name = msg.axis_names[i];
-    axis.gyro = msg.is_gyro[i] != 0;
+    axis.kind = msg.is_gyro[i] != 0 ? SensorKind::gyro : SensorKind::accel;
     for (std::size_t t = 0; t < 5; ++t) {
       models::Estimate& e = axis.terms[t];
       e.value = (*terms[t].value)[i];

@@ -7,10 +7,12 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <string_view>
 #include <utility>
 
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "common/sensor_kind.h"
 #include "io/lcm_type_definition_internal.h"
 
 namespace imunoise::io {
@@ -25,9 +27,11 @@ LcmFieldDecoder user_type_decoder(const LcmUserType& user_type) {
 }
 
 /// "rad/s", or "0.017453292519943295 rad/s" for a field in deg/s: the source unit in SI.
-std::string unit_text(double scale_to_si, const char* si_unit) {
-  if (scale_to_si == 1.0) return si_unit;
-  return shortest_number_text(scale_to_si) + " " + si_unit;
+std::string unit_text(double scale_to_si, std::string_view si_unit) {
+  if (scale_to_si == 1.0) return std::string(si_unit);
+  std::string text = shortest_number_text(scale_to_si);
+  text.append(" ").append(si_unit);
+  return text;
 }
 
 /// llround semantics (half away from zero) for an integer quotient.
@@ -116,7 +120,11 @@ pipeline::ImuSampleColumns LcmUserImuDecoder::make_columns() const {
   columns.increments = increments_;
   for (std::size_t c = 0; c < 6; ++c) {
     columns.source_fields[c] = decoder_.slot_path(value_slots_[c]);
-    const char* si = c < 3 ? (increments_ ? "rad" : "rad/s") : (increments_ ? "m/s" : "m/s^2");
+    const SensorKind kind = pipeline::kImuChannelKinds[c];
+    // An increment is an angle [rad] or a velocity change [m/s]; a rate is in the kind's unit.
+    const std::string_view si = !increments_               ? si_rate_unit(kind)
+                                : kind == SensorKind::gyro ? "rad"
+                                                           : "m/s";
     columns.source_units[c] = unit_text(scale_to_si_[c], si);
   }
   return columns;

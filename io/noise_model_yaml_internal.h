@@ -29,7 +29,7 @@ struct SensorKeys {
 };
 
 inline constexpr SensorKeys kGyroKeys{
-    "gyro",
+    sensor_name(SensorKind::gyro),
     {"quantization_rad", "white_noise_rad_per_sqrt_s", "bias_instability_rad_per_s",
      "random_walk_rad_per_s_sqrt_s", "ramp_rad_per_s2"},
     {"Q (angle quantization)", "N (ARW)", "B (bias instability)", "K (RRW)", "R (rate ramp)"},
@@ -39,7 +39,7 @@ inline constexpr SensorKeys kGyroKeys{
     "amplitude_rad_per_s"};
 
 inline constexpr SensorKeys kAccelKeys{
-    "accel",
+    sensor_name(SensorKind::accel),
     {"quantization_m_per_s", "white_noise_m_per_s_sqrt_s", "bias_instability_m_per_s2",
      "random_walk_m_per_s2_sqrt_s", "ramp_m_per_s3"},
     {"Q (velocity quantization)", "N (VRW)", "B (bias instability)", "K (accel random walk)",
@@ -49,7 +49,10 @@ inline constexpr SensorKeys kAccelKeys{
     "sigma_ci_high_m_per_s2",
     "amplitude_m_per_s2"};
 
-inline const SensorKeys& keys_for(bool gyro) { return gyro ? kGyroKeys : kAccelKeys; }
+/// The keys of KIND's axes.
+inline const SensorKeys& keys_for(SensorKind kind) {
+  return kind == SensorKind::gyro ? kGyroKeys : kAccelKeys;
+}
 
 /// @name Root keys, in the order they are written
 /// @{

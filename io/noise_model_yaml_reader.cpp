@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -270,21 +271,23 @@ class Reader {
                       const std::string& path) const {
     const Map map(*this, node, path);
     const YAML::Node& sensor = map.require(kSensor);
-    const std::string sensor_name = text(sensor, map.child(kSensor));
-    if (sensor_name != kGyroKeys.sensor && sensor_name != kAccelKeys.sensor) {
+    const std::string sensor_text = text(sensor, map.child(kSensor));
+    const std::optional<SensorKind> kind = parse_sensor_name(sensor_text);
+    if (!kind) {
       fail(sensor, map.child(kSensor),
            "unknown sensor " + got(sensor) + " (expected gyro or accel)");
     }
     AxisModel axis;
     axis.name = name;
-    axis.gyro = sensor_name == kGyroKeys.sensor;
-    const SensorKeys& keys = keys_for(axis.gyro);
+    axis.kind = *kind;
+    const SensorKeys& keys = keys_for(axis.kind);
 
     std::vector<std::string_view> accepted{kSensor};
     accepted.insert(accepted.end(), keys.terms.begin(), keys.terms.end());
     accepted.insert(accepted.end(),
                     {kGaussMarkov, kSinusoids, kBiasGm, kMultiGm, kFit, kReadoff, kPsdCheck});
-    map.accept_only(accepted, (axis.gyro ? "a " : "an ") + sensor_name + " axis");
+    map.accept_only(accepted,
+                    (axis.kind == SensorKind::gyro ? "a " : "an ") + sensor_text + " axis");
 
     for (std::size_t t = 0; t < kTermCount; ++t) {
       axis.terms[t] = read_estimate(map.require(keys.terms[t]), map.child(keys.terms[t]));

@@ -145,7 +145,7 @@ class Writer {
   }
 
   void write_axis(const AxisModel& axis) {
-    const SensorKeys& keys = keys_for(axis.gyro);
+    const SensorKeys& keys = keys_for(axis.kind);
     line(2, key_text(axis.name) + ":");
     entry(4, kSensor, std::string(keys.sensor) + "  # gyro | accel: decides the unit suffixes");
     for (std::size_t t = 0; t < kTermCount; ++t) {

@@ -21,9 +21,8 @@ char* append_csv_row(char* out, double time_s, std::span<const double> values) {
 }
 
 std::string csv_column_name(const pipeline::Channel& channel) {
-  if (channel.unit == "rad/s") return channel.name + "_rad_per_s";
-  if (channel.unit == "m/s^2") return channel.name + "_m_per_s2";
-  return channel.name;
+  if (!channel.kind) return channel.name;
+  return channel.name + "_" + std::string(rate_unit_suffix(*channel.kind));
 }
 
 void write_recording_csv(const pipeline::Recording& rec, const std::string& path) {

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "common/errors.h"
+#include "common/sensor_kind.h"
 #include "io/binary_recording.h"
 #include "io/csv_reader.h"
 #include "io/lcm_log.h"
@@ -98,8 +99,8 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
     const std::string gyro(to_string(config.gyro_unit.value_or(GyroUnit::kRadPerS)));
     const std::string accel(to_string(config.accel_unit.value_or(AccelUnit::kMPerS2)));
     for (pipeline::Channel& c : recording.channels) {
-      if (c.name.rfind("gyro_", 0) == 0) c.source_unit = gyro;
-      if (c.name.rfind("accel_", 0) == 0) c.source_unit = accel;
+      if (c.kind == SensorKind::gyro) c.source_unit = gyro;
+      if (c.kind == SensorKind::accel) c.source_unit = accel;
     }
   }
   return recording;

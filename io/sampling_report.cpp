@@ -9,11 +9,13 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <utility>
 
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "common/sampling_gap.h"
+#include "common/sensor_kind.h"
 #include "common/units.h"
 
 namespace imunoise::io {
@@ -39,11 +41,13 @@ std::string where(const std::optional<pipeline::SampleLocation>& loc) {
   return printf_string(" (first at sample %" PRId64 ")", loc->index);
 }
 
-/// The same value in the unit people read off datasheets, for gyro and accel channels.
+/// The same value in the unit people read off datasheets, for gyro and accel channels (the
+/// channel's unit as the report spells it: "rad/s", "m/s^2"; none for other units).
 std::string human_value(double v, const std::string& unit) {
-  if (unit == "rad/s") return printf_string("%.4g deg/s", v / units::kDegPerS);
-  if (unit == "m/s^2") return printf_string("%.4g mg", v / units::kMilliG);
-  return {};
+  const std::optional<SensorKind> kind = parse_si_rate_unit(unit);
+  if (!kind) return {};
+  if (*kind == SensorKind::gyro) return printf_string("%.4g deg/s", v / units::kDegPerS);
+  return printf_string("%.4g mg", v / units::kMilliG);
 }
 
 nlohmann::ordered_json location_json(const std::optional<pipeline::SampleLocation>& loc) {

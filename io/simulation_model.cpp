@@ -177,7 +177,7 @@ const Quantity kPhase{"phase", {{{"phase_rad", 1.0}, {"phase_deg", kDeg}}}, true
 
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 
-const SensorSchema& schema_of(Sensor sensor) { return sensor == Sensor::kGyro ? kGyro : kAccel; }
+const SensorSchema& schema_of(SensorKind kind) { return kind == SensorKind::gyro ? kGyro : kAccel; }
 
 /// "a|b|c": the keys of Q.
 std::string alternatives(const Quantity& q) {
@@ -492,9 +492,9 @@ models::ChannelNoiseModel channel_model(const SimulationAxis& axis) {
   return model;
 }
 
-std::string si_terms_text(const SimulationAxis& axis, Sensor sensor) {
+std::string si_terms_text(const SimulationAxis& axis, SensorKind kind) {
   // Built with append() only: GCC 12 raises a false -Wrestrict on `" " + std::string(…)`.
-  const SensorSchema& schema = schema_of(sensor);
+  const SensorSchema& schema = schema_of(kind);
   std::string text;
   const auto add = [&text](std::string_view key, double value) {
     text.append(key).append("=").append(shortest_number_text(value));

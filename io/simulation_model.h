@@ -51,12 +51,10 @@
 #include <string>
 
 #include "common/noise_coefficients.h"
+#include "common/sensor_kind.h"
 #include "models/noise_simulator.h"
 
 namespace imunoise::io {
-
-/// The two sensors of the model file.
-enum class Sensor { kGyro, kAccel };
 
 /// One axis of the model file, SI units (gyro rad, rad/s; accelerometer m/s, m/s²).
 struct SimulationAxis {
@@ -90,6 +88,6 @@ models::ChannelNoiseModel channel_model(const SimulationAxis& axis);
 
 /// The non-zero terms of AXIS under their SI keys, each preceded by a space, e.g.
 /// " arw_rad_per_sqrt_s=0.000116355 bias_rad_per_s=0.002", or " (no terms)".
-std::string si_terms_text(const SimulationAxis& axis, Sensor sensor);
+std::string si_terms_text(const SimulationAxis& axis, SensorKind kind);
 
 }  // namespace imunoise::io

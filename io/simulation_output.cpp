@@ -118,9 +118,9 @@ BinaryRecordingHeader simulation_binary_header(const SimulationModelFile& setup,
   for (std::size_t c = 0; c < models::kImuChannels; ++c) {
     pipeline::Channel channel;
     channel.name = pipeline::kImuChannelNames[c];
-    channel.unit = c < 3 ? "rad/s" : "m/s^2";
+    channel.kind = pipeline::kImuChannelKinds[c];
     channel.source_column = csv_column_name(channel);
-    channel.source_unit = channel.unit;
+    channel.source_unit = channel.unit();
     h.channels.push_back(std::move(channel));
   }
   return h;
@@ -137,15 +137,14 @@ void write_simulation_csv_header(std::ostream& out, const SimulationModelFile& s
       << "\n# samples: " << run.samples << "\n# flicker_band_s: ["
       << shortest_number_text(run.flicker_band.tau_min_s) << ", "
       << shortest_number_text(run.flicker_band.tau_max_s) << "]\n";
-  const auto write_sensor = [&](std::string_view sensor_name, Sensor sensor,
-                                const std::array<SimulationAxis, 3>& axes) {
+  const auto write_sensor = [&](SensorKind kind, const std::array<SimulationAxis, 3>& axes) {
     for (std::size_t a = 0; a < 3; ++a) {
-      out << "# " << sensor_name << "_" << kAxes[a] << ":" << si_terms_text(axes[a], sensor)
+      out << "# " << sensor_name(kind) << "_" << kAxes[a] << ":" << si_terms_text(axes[a], kind)
           << "\n";
     }
   };
-  write_sensor("gyro", Sensor::kGyro, setup.gyro);
-  write_sensor("accel", Sensor::kAccel, setup.accel);
+  write_sensor(SensorKind::gyro, setup.gyro);
+  write_sensor(SensorKind::accel, setup.accel);
   out << "time_s,gyro_x_rad_per_s,gyro_y_rad_per_s,gyro_z_rad_per_s,"
          "accel_x_m_per_s2,accel_y_m_per_s2,accel_z_m_per_s2\n";
 }

@@ -30,11 +30,11 @@ SimulationModelFile load_fitted_model_as_simulation(const std::string& path) {
   setup.name = "fitted model of " + fitted.source;
   setup.sample_rate_hz = fitted.sample_rate_hz;
   for (std::size_t a = 0; a < 3; ++a) {
-    for (const bool gyro : {true, false}) {
-      const std::string name = std::string(gyro ? "gyro_" : "accel_") + std::string(kAxes[a]);
+    for (const SensorKind kind : kSensorKinds) {
+      const std::string name = std::string(sensor_name(kind)) + "_" + std::string(kAxes[a]);
       const models::AxisModel* axis = fitted.find_axis(name);
       if (axis == nullptr) continue;
-      (gyro ? setup.gyro : setup.accel)[a].coefficients = axis->coefficients();
+      (kind == SensorKind::gyro ? setup.gyro : setup.accel)[a].coefficients = axis->coefficients();
     }
   }
   return setup;

@@ -8,8 +8,8 @@
 
 namespace imunoise::models {
 
-DatasheetUnit datasheet_unit(NoiseTerm term, bool gyro) {
-  if (gyro) {
+DatasheetUnit datasheet_unit(NoiseTerm term, SensorKind kind) {
+  if (kind == SensorKind::gyro) {
     switch (term) {
       case NoiseTerm::quantization:
         return {1.0 / units::kMicroradian, "urad", "µrad"};

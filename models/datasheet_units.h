@@ -19,6 +19,6 @@ struct DatasheetUnit {
 
 /// Gyro: Q µrad, N deg/√h, B deg/h, K deg/h/√h, R deg/h². Accelerometer: Q mm/s, N µg/√Hz,
 /// B µg, K m/s/h/√h, R µg/h.
-DatasheetUnit datasheet_unit(NoiseTerm term, bool gyro);
+DatasheetUnit datasheet_unit(NoiseTerm term, SensorKind kind);
 
 }  // namespace imunoise::models

@@ -76,10 +76,10 @@ SensorAxisParameters one_axis(const AxisModel& axis, const FilterParameterOption
 }
 
 /// Combines the axes of one sensor by the axis rule.
-SensorParameters combine(const std::vector<SensorAxisParameters>& axes, bool gyro,
+SensorParameters combine(const std::vector<SensorAxisParameters>& axes, SensorKind kind,
                          AxisChoice choice) {
   SensorParameters out;
-  out.gyro = gyro;
+  out.kind = kind;
   if (choice == AxisChoice::each) {
     for (int i = 0; i < 3; ++i) out.axes[i] = axes[i];
     return out;
@@ -125,14 +125,14 @@ SensorParameters combine(const std::vector<SensorAxisParameters>& axes, bool gyr
   return out;
 }
 
-std::optional<SensorParameters> sensor_parameters(const NoiseModel& model, bool gyro,
+std::optional<SensorParameters> sensor_parameters(const NoiseModel& model, SensorKind kind,
                                                   const FilterParameterOptions& o,
                                                   std::vector<std::string>& rules) {
   std::vector<const AxisModel*> axes;
   for (const auto& a : model.axes)
-    if (a.gyro == gyro) axes.push_back(&a);
+    if (a.kind == kind) axes.push_back(&a);
   if (axes.empty()) return std::nullopt;
-  const std::string sensor = gyro ? "gyro" : "accel";
+  const std::string sensor(sensor_name(kind));
   // x, y, z order by name suffix where the names say it (model order otherwise).
   std::stable_sort(axes.begin(), axes.end(), [](const AxisModel* a, const AxisModel* b) {
     const auto rank = [](const std::string& n) {
@@ -154,7 +154,7 @@ std::optional<SensorParameters> sensor_parameters(const NoiseModel& model, bool 
                      " axes; the model has " + std::to_string(axes.size()));
   std::vector<SensorAxisParameters> per_axis;
   for (const AxisModel* a : axes) per_axis.push_back(one_axis(*a, o));
-  auto out = combine(per_axis, gyro,
+  auto out = combine(per_axis, kind,
                      o.axis == AxisChoice::each ? AxisChoice::each
                      : axes.size() == 1         ? AxisChoice::worst
                                                 : o.axis);
@@ -210,8 +210,8 @@ FilterParameters select_filter_parameters(const NoiseModel& model,
                                 shortest_number_text(100.0 * model.confidence) +
                                 " % interval (a term not identified: its upper bound)"
                           : "values: best estimates (the point values of the model)");
-  out.gyro = sensor_parameters(model, true, options, out.rules);
-  out.accel = sensor_parameters(model, false, options, out.rules);
+  out.gyro = sensor_parameters(model, SensorKind::gyro, options, out.rules);
+  out.accel = sensor_parameters(model, SensorKind::accel, options, out.rules);
   out.rules.push_back(std::string("bias instability as one Gauss-Markov term: convention ") +
                       std::string(name_of(options.gm_convention)) +
                       " (theory.md §4.4); without B, the largest fitted GM term");

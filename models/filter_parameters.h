@@ -65,7 +65,7 @@ struct SensorAxisParameters : NoiseCoefficients {
 
 /// One sensor (gyro or accel): slot 0, 1, 2 = x, y, z (all three equal unless `each`).
 struct SensorParameters {
-  bool gyro = true;
+  SensorKind kind = SensorKind::gyro;  ///< which sensor the three slots are of
   std::array<SensorAxisParameters, 3> axes;
   const SensorAxisParameters& one() const { return axes[0]; }
 };

@@ -3,18 +3,21 @@
 namespace imunoise::models {
 
 // SI units of theory.md §1.3, written in ASCII so they survive every terminal and config.
-std::string_view term_si_unit(NoiseTerm term, bool gyro) {
+std::string_view term_si_unit(NoiseTerm term, SensorKind kind) {
+  const auto unit = [kind](std::string_view gyro_unit, std::string_view accel_unit) {
+    return kind == SensorKind::gyro ? gyro_unit : accel_unit;
+  };
   switch (term) {
     case NoiseTerm::quantization:
-      return gyro ? "rad" : "m/s";
+      return unit("rad", "m/s");
     case NoiseTerm::white_noise:
-      return gyro ? "rad/s^0.5" : "m/s^1.5";
+      return unit("rad/s^0.5", "m/s^1.5");
     case NoiseTerm::bias_instability:
-      return gyro ? "rad/s" : "m/s^2";
+      return si_rate_unit(kind);
     case NoiseTerm::random_walk:
-      return gyro ? "rad/s^1.5" : "m/s^2.5";
+      return unit("rad/s^1.5", "m/s^2.5");
     case NoiseTerm::ramp:
-      return gyro ? "rad/s^2" : "m/s^3";
+      return unit("rad/s^2", "m/s^3");
   }
   return "";
 }

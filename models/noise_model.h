@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "common/noise_coefficients.h"
+#include "common/sensor_kind.h"
 
 namespace imunoise::models {
 
 /// SI unit of a term for a gyro (rad…) or an accelerometer (m/s…), e.g. "rad/s^0.5".
-std::string_view term_si_unit(NoiseTerm term, bool gyro);
+std::string_view term_si_unit(NoiseTerm term, SensorKind kind);
 
 /// One estimated coefficient [SI unit of its term].
 struct Estimate {
@@ -50,8 +51,8 @@ struct ReadoffValues {
 
 /// The model of one axis.
 struct AxisModel {
-  std::string name;  ///< gyro_x … accel_z
-  bool gyro = true;  ///< gyro (rad/s) or accelerometer (m/s²)
+  std::string name;                    ///< gyro_x … accel_z
+  SensorKind kind = SensorKind::gyro;  ///< gyro (rad/s) or accelerometer (m/s²)
   PerTerm<Estimate> terms;
   std::vector<GaussMarkovEstimate> gauss_markov;       ///< fitted GM terms (if any)
   std::vector<Sinusoid> sinusoids;                     ///< fitted sinusoids (if any)

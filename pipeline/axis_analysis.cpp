@@ -167,13 +167,13 @@ double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
   return 10.0 * pts[first].tau_s;
 }
 
-AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
+AxisAnalysis analyze_axis(const std::string& name, SensorKind kind, std::span<const double> rate,
                           double tau0_s, int axis_index, const AxisAnalysisOptions& options) {
   const std::span<const double> whole[] = {rate};
-  return analyze_axis_pieces(name, gyro, whole, tau0_s, axis_index, options);
+  return analyze_axis_pieces(name, kind, whole, tau0_s, axis_index, options);
 }
 
-AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
+AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
                                  std::span<const std::span<const double>> pieces, double tau0_s,
                                  int axis_index, const AxisAnalysisOptions& options) {
   IMUNOISE_EXPECT(!pieces.empty(), name + ": no samples to analyse");
@@ -264,7 +264,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
   // 4. Intervals.
   models::AxisModel& model = out.model;
   model.name = name;
-  model.gyro = gyro;
+  model.kind = kind;
   model.fit_tau_min_s = out.fit.tau_min_s;
   model.fit_tau_max_s = out.fit.tau_max_s;
   model.fit_note = out.fit.selection_note;

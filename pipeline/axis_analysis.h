@@ -59,7 +59,7 @@ struct AxisAnalysis {
 /// at sample period TAU0_S. AXIS_INDEX only decorrelates the bootstrap seeds of the axes.
 /// Throws AnalysisError with a clear reason when the record cannot support a fit (too short,
 /// constant, non-finite).
-AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const double> rate,
+AxisAnalysis analyze_axis(const std::string& name, SensorKind kind, std::span<const double> rate,
                           double tau0_s, int axis_index, const AxisAnalysisOptions& options);
 
 /// analyze_axis over the independent gap-free PIECES of one record (`--gaps split`): OADEV
@@ -68,7 +68,7 @@ AxisAnalysis analyze_axis(const std::string& name, bool gyro, std::span<const do
 /// (analysis::pooled_welch_psd), then the fit on the pooled curves as usual. The bootstrap
 /// simulates one record of the total length — an approximation the fit note states. One
 /// piece is exactly analyze_axis. PIECES must not be empty (ContractViolation).
-AxisAnalysis analyze_axis_pieces(const std::string& name, bool gyro,
+AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
                                  std::span<const std::span<const double>> pieces, double tau0_s,
                                  int axis_index, const AxisAnalysisOptions& options);
 

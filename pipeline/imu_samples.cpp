@@ -51,11 +51,12 @@ Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string
   }
   rec.sample_period_s = timing.median_interval_s;
 
-  const auto add_channel = [&](std::string name, std::string unit, std::string source_unit,
-                               const std::string& field, std::vector<double> v, bool from_inc) {
+  const auto add_channel = [&](std::string name, std::optional<SensorKind> kind,
+                               std::string source_unit, const std::string& field,
+                               std::vector<double> v, bool from_inc) {
     Channel ch;
     ch.name = std::move(name);
-    ch.unit = std::move(unit);
+    ch.kind = kind;
     ch.source_unit = std::move(source_unit);
     ch.source_column = channel + "." + field;
     ch.from_increments = from_inc;
@@ -66,12 +67,12 @@ Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string
     rec.channels.push_back(std::move(ch));
   };
   for (std::size_t c = 0; c < 6; ++c) {
-    add_channel(kImuChannelNames[c], c < 3 ? "rad/s" : "m/s^2", samples.source_units[c],
+    add_channel(kImuChannelNames[c], kImuChannelKinds[c], samples.source_units[c],
                 samples.source_fields[c], std::move(samples.values[c]), samples.increments);
   }
   if (samples.temperature_degc.size() == n) {
-    // An extra channel, as a CSV extra column: unit "" (as in the source), here °C.
-    add_channel("temperature", "", "degC", samples.temperature_field,
+    // An extra channel, as a CSV extra column: no kind, unit "" (as in the source), here °C.
+    add_channel("temperature", std::nullopt, "degC", samples.temperature_field,
                 std::move(samples.temperature_degc), false);
   }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/sensor_kind.h"
 #include "pipeline/sampling_checks.h"
 
 namespace imunoise::pipeline {
@@ -19,15 +20,23 @@ namespace imunoise::pipeline {
 /// The six standard channel names of a recording, gyro then accelerometer, x, y, z (body FRD).
 inline constexpr std::array<const char*, 6> kImuChannelNames{"gyro_x",  "gyro_y",  "gyro_z",
                                                              "accel_x", "accel_y", "accel_z"};
+/// The sensor kind of each of kImuChannelNames.
+inline constexpr std::array<SensorKind, 6> kImuChannelKinds{SensorKind::gyro,  SensorKind::gyro,
+                                                            SensorKind::gyro,  SensorKind::accel,
+                                                            SensorKind::accel, SensorKind::accel};
 
 /// One named channel, in SI.
 struct Channel {
   std::string name;  ///< gyro_x, gyro_y, gyro_z, accel_x, accel_y, accel_z, or an extra name
-  std::string unit;  ///< SI unit of `values`: "rad/s", "m/s^2"; "" for extra (as-in-file) columns
+  /// gyro (`values` in rad/s) or accelerometer (m/s²); empty for extra (as-in-file) columns
+  std::optional<SensorKind> kind;
   std::vector<double> values;
   std::string source_column;     ///< where it came from: header name or "column N"
   std::string source_unit;       ///< unit in the file, e.g. "deg/h", or "rad" for angle increments
   bool from_increments = false;  ///< the file held increments per sample, divided here by Δt
+
+  /// The SI unit of `values` as every output writes it: "rad/s", "m/s^2", or "" (extra).
+  std::string_view unit() const { return kind ? si_rate_unit(*kind) : std::string_view(); }
 };
 
 /// A stationary IMU recording, SI inside.
@@ -70,9 +79,9 @@ inline std::vector<ChannelSamples> channel_checks(const std::vector<Channel>& ch
                                                   std::optional<double> accel_full_scale_m_per_s2) {
   std::vector<ChannelSamples> checks;
   for (const Channel& ch : channels) {
-    ChannelSamples samples{ch.name, ch.unit, ch.values, std::nullopt};
-    if (ch.unit == "rad/s") samples.full_scale = gyro_full_scale_rad_per_s;
-    if (ch.unit == "m/s^2") samples.full_scale = accel_full_scale_m_per_s2;
+    ChannelSamples samples{ch.name, ch.unit(), ch.values, std::nullopt};
+    if (ch.kind == SensorKind::gyro) samples.full_scale = gyro_full_scale_rad_per_s;
+    if (ch.kind == SensorKind::accel) samples.full_scale = accel_full_scale_m_per_s2;
     checks.push_back(samples);
   }
   return checks;

@@ -71,7 +71,7 @@ RecordingAnalysis analyze(const Recording& recording, const std::string& source,
     try {
       AxisAnalysisOptions channel_options = options.axis;
       channel_options.progress = feedback.progress ? feedback.progress(i) : ProgressCallback{};
-      results[i] = analyze_axis_pieces(channel->name, index < 3, pieces[i], tau0_s,
+      results[i] = analyze_axis_pieces(channel->name, kImuChannelKinds[index], pieces[i], tau0_s,
                                        static_cast<int>(index), channel_options);
     } catch (...) {
       errors[i] = std::current_exception();

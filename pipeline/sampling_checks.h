@@ -76,7 +76,7 @@ inline constexpr int kIntervalHistogramBins = 41;
 /// Per-channel checks; values in the channel's unit.
 struct ChannelReport {
   std::string name;
-  std::string unit;
+  std::string unit;  ///< as reported: "rad/s", "m/s^2" (Channel::unit()), "" = as in the file
   double min = 0.0, max = 0.0, mean = 0.0, std_dev = 0.0;
   bool constant = false;               ///< all samples equal (no saturation runs counted)
   std::int64_t saturation_runs = 0;    ///< runs of ≥ min_run identical samples at min or max
@@ -101,7 +101,7 @@ struct SamplingReport {
 /// One channel's samples as input to the checks.
 struct ChannelSamples {
   std::string_view name;
-  std::string_view unit;
+  std::string_view unit;  ///< the unit text the report gives the values (Channel::unit())
   std::span<const double> values;
   std::optional<double> full_scale;  ///< |value| ≥ this is saturated [unit]
 };

@@ -38,9 +38,9 @@ SensorStates sensor_states(const models::NoiseModel& model, ins::BiasModel bias,
   const bool rw = bias != ins::BiasModel::gauss_markov, gm = bias != ins::BiasModel::random_walk;
   for (const auto& axis : model.axes) {
     const auto p = models::axis_filter_parameters(axis, options);
-    const std::string rate_unit = axis.gyro ? "rad_per_s" : "m_per_s2";
-    const std::string ramp_unit = axis.gyro ? "rad_per_s2" : "m_per_s3";
-    out.white_noise.push_back({axis.name, axis.gyro, p.white_noise});
+    const std::string rate_unit(rate_unit_suffix(axis.kind));
+    const std::string ramp_unit = axis.kind == SensorKind::gyro ? "rad_per_s2" : "m_per_s3";
+    out.white_noise.push_back({axis.name, axis.kind, p.white_noise});
     if (rw && p.random_walk > 0.0)
       blocks.push_back(with_units(models::random_walk_state(p.random_walk, axis.name + "_bias_rw"),
                                   {rate_unit}));
@@ -95,9 +95,10 @@ SensorStates ins_states(ins::InsSensorNoise noise, const InsStateOptions& option
     add_dropped(noise.accel[i], kImuChannelNames[3 + i]);
   }
   for (std::size_t i = 0; i < 3; ++i)
-    out.white_noise.push_back({kImuChannelNames[i], true, noise.gyro[i].white_noise});
+    out.white_noise.push_back({kImuChannelNames[i], SensorKind::gyro, noise.gyro[i].white_noise});
   for (std::size_t i = 0; i < 3; ++i)
-    out.white_noise.push_back({kImuChannelNames[3 + i], false, noise.accel[i].white_noise});
+    out.white_noise.push_back(
+        {kImuChannelNames[3 + i], SensorKind::accel, noise.accel[i].white_noise});
   const auto nominal = ins::stationary_nominal(options.latitude_deg * units::kDeg, options.height_m,
                                                options.heading_deg * units::kDeg);
   out.continuous = ins::ins_error_state_model(nominal, noise, options.error_state);

@@ -18,11 +18,11 @@ namespace imunoise::pipeline {
 
 /// One white-noise input of one axis, with its per-sample σ at the model's step Δt.
 struct WhiteNoiseInput {
-  std::string axis;              ///< gyro_x … accel_z
-  bool gyro = true;              ///< gyro (rad…) or accelerometer (m/s…)
-  double density = 0.0;          ///< N [rad/√s | m/s/√s]
-  double rate_sigma = 0.0;       ///< σ of a rate sample, N/√Δt [rad/s | m/s²]
-  double increment_sigma = 0.0;  ///< σ of an increment over Δt, N·√Δt [rad | m/s]
+  std::string axis;                    ///< gyro_x … accel_z
+  SensorKind kind = SensorKind::gyro;  ///< gyro (rad…) or accelerometer (m/s…)
+  double density = 0.0;                ///< N [rad/√s | m/s/√s]
+  double rate_sigma = 0.0;             ///< σ of a rate sample, N/√Δt [rad/s | m/s²]
+  double increment_sigma = 0.0;        ///< σ of an increment over Δt, N·√Δt [rad | m/s]
 };
 
 /// A fitted term of one axis that the chosen bias model cannot carry: it is absent from the

@@ -12,6 +12,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "common/sampling_gap.h"
+#include "common/sensor_kind.h"
 
 namespace imunoise::report {
 
@@ -45,7 +46,10 @@ Marker axis_marker(int color) {
   }
 }
 
-bool is_gyro(const std::string& axis_name) { return axis_name.rfind("gyro", 0) == 0; }
+/// The figure an axis goes in: gyro for "gyro…" names, the accelerometer one for every other.
+SensorKind figure_kind(const std::string& axis_name) {
+  return sensor_kind_of_channel(axis_name).value_or(SensorKind::accel);
+}
 
 /// KPOINTS log-spaced values from LO to HI (both > 0).
 std::vector<double> log_space(double lo, double hi, int points) {
@@ -115,9 +119,8 @@ const char* term_symbol(NoiseTerm term) {
 }  // namespace
 
 std::string figure_csv(const Figure& figure) {
-  if (figure.series_ids.size() != figure.plot.series.size()) {
-    throw InputError("figure '" + figure.name + "': one CSV name per series is needed");
-  }
+  IMUNOISE_EXPECT(figure.series_ids.size() == figure.plot.series.size(),
+                  "figure '" + figure.name + "': one CSV name per series is needed");
   std::string out = "series,";
   out.append(figure.x_column).append(",").append(figure.y_column);
   if (figure.csv_intervals) {
@@ -175,22 +178,22 @@ Measured oadev_of(const io::AllanAxis& axis) {
 
 }  // namespace
 
-Figure allan_figure(bool gyro, const std::vector<io::AllanAxis>& curves,
+Figure allan_figure(SensorKind kind, const std::vector<io::AllanAxis>& curves,
                     const models::NoiseModel& model) {
   Figure f;
-  const std::string sensor = gyro ? "gyro" : "accel";
+  const std::string sensor(sensor_name(kind));
   f.name = "allan-" + sensor;
   f.x_column = "tau_s";
-  f.y_column = gyro ? "adev_rad_per_s" : "adev_m_per_s2";
+  f.y_column = "adev_" + std::string(rate_unit_suffix(kind));
   f.plot.id = f.name;
-  f.plot.title = gyro ? "Gyroscopes: overlapping Allan deviation"
-                      : "Accelerometers: overlapping Allan deviation";
+  f.plot.title = kind == SensorKind::gyro ? "Gyroscopes: overlapping Allan deviation"
+                                          : "Accelerometers: overlapping Allan deviation";
   f.plot.x = {"averaging time τ [s]", Scale::log10, {}, {}};
-  f.plot.y = {gyro ? "σ(τ) [rad/s]" : "σ(τ) [m/s²]", Scale::log10, {}, {}};
+  f.plot.y = {kind == SensorKind::gyro ? "σ(τ) [rad/s]" : "σ(τ) [m/s²]", Scale::log10, {}, {}};
   double confidence = model.confidence;
   for (const io::AllanAxis& allan : curves) {
     const Measured curve = oadev_of(allan);
-    if (is_gyro(curve.axis_name) != gyro) continue;
+    if (figure_kind(curve.axis_name) != kind) continue;
     const int color = axis_color(curve.axis_name);
     const std::string letter = axis_letter(curve.axis_name);
     Series data;
@@ -288,19 +291,20 @@ Figure allan_figure(bool gyro, const std::vector<io::AllanAxis>& curves,
   return f;
 }
 
-Figure psd_figure(bool gyro, const std::vector<io::PsdAxis>& spectra) {
+Figure psd_figure(SensorKind kind, const std::vector<io::PsdAxis>& spectra) {
   Figure f;
-  const std::string sensor = gyro ? "gyro" : "accel";
+  const std::string sensor(sensor_name(kind));
   f.name = "psd-" + sensor;
   f.x_column = "frequency_hz";
-  f.y_column = gyro ? "psd_rad2_per_s2_per_hz" : "psd_m2_per_s4_per_hz";
+  f.y_column = "psd_" + std::string(psd_unit_suffix(kind));
   f.plot.id = f.name;
-  f.plot.title = gyro ? "Gyroscopes: power spectral density (one-sided)"
-                      : "Accelerometers: power spectral density (one-sided)";
+  f.plot.title = kind == SensorKind::gyro ? "Gyroscopes: power spectral density (one-sided)"
+                                          : "Accelerometers: power spectral density (one-sided)";
   f.plot.x = {"frequency f [Hz]", Scale::log10, {}, {}};
-  f.plot.y = {gyro ? "S(f) [(rad/s)²/Hz]" : "S(f) [(m/s²)²/Hz]", Scale::log10, {}, {}};
+  f.plot.y = {
+      kind == SensorKind::gyro ? "S(f) [(rad/s)²/Hz]" : "S(f) [(m/s²)²/Hz]", Scale::log10, {}, {}};
   for (const io::PsdAxis& s : spectra) {
-    if (is_gyro(s.name) != gyro) continue;
+    if (figure_kind(s.name) != kind) continue;
     const int color = axis_color(s.name);
     const std::string letter = axis_letter(s.name);
     Series measured;
@@ -376,9 +380,8 @@ Figure drift_figure(const pipeline::DriftSeries& drift,
 
 Figure interval_figure(const std::vector<double>& bin_low_s, const std::vector<double>& bin_high_s,
                        const std::vector<std::int64_t>& counts, double median_interval_s) {
-  if (bin_low_s.size() != counts.size() || bin_high_s.size() != counts.size()) {
-    throw InputError("interval histogram: bin edges and counts differ in length");
-  }
+  IMUNOISE_EXPECT(bin_low_s.size() == counts.size() && bin_high_s.size() == counts.size(),
+                  "interval histogram: bin edges and counts differ in length");
   Figure f;
   f.name = "sampling-intervals";
   f.x_column = "interval_ms";
@@ -428,9 +431,8 @@ Figure interval_figure(const std::vector<double>& bin_low_s, const std::vector<d
 
 Figure gaps_figure(const std::vector<double>& start_s, const std::vector<double>& length_s,
                    double duration_s, std::int64_t gap_count) {
-  if (start_s.size() != length_s.size()) {
-    throw InputError("gap list: start times and lengths differ in length");
-  }
+  IMUNOISE_EXPECT(start_s.size() == length_s.size(),
+                  "gap list: start times and lengths differ in length");
   Figure f;
   f.name = "sampling-gaps";
   f.x_column = "time_h";

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/sensor_kind.h"
 #include "io/allan_csv.h"
 #include "io/psd_csv.h"
 #include "models/noise_model.h"
@@ -31,19 +32,21 @@ struct Figure {
 /// The CSV of what FIGURE plots, one row per point: `series,X,Y,Y_ci_low,Y_ci_high` (empty
 /// interval cells where a series has none; no interval columns when !csv_intervals), then one
 /// `readoff: TEXT` row per labelled point.
-/// Numbers are shortest round-trip decimals.
+/// Numbers are shortest round-trip decimals. FIGURE must name every series (series_ids as long
+/// as plot.series; ContractViolation otherwise).
 std::string figure_csv(const Figure& figure);
 
 /// "allan-gyro" / "allan-accel": OADEV of the sensor's axes with interval bars; per axis the
 /// fitted total model ADEV (solid) and each identified term (dashed: Q, N, B, K, R, GM,
 /// sinusoids) from MODEL, over the measured τ range; the IEEE-952 slope read-offs marked where
 /// the method reads them (Q at τ = √3 s, N at 1 s, B as 0.664·B at the ADEV minimum, K at
-/// 3 s, R at √2 s; theory.md §4.2). Axes of the other sensor are ignored.
-Figure allan_figure(bool gyro, const std::vector<io::AllanAxis>& curves,
+/// 3 s, R at √2 s; theory.md §4.2). Axes of the other sensor are ignored (an axis not named
+/// gyro… counts as an accelerometer's).
+Figure allan_figure(SensorKind kind, const std::vector<io::AllanAxis>& curves,
                     const models::NoiseModel& model);
 
 /// "psd-gyro" / "psd-accel": the log-binned PSD of each axis (solid) and the model (dashed).
-Figure psd_figure(bool gyro, const std::vector<io::PsdAxis>& spectra);
+Figure psd_figure(SensorKind kind, const std::vector<io::PsdAxis>& spectra);
 
 /// "drift-horizontal": each recorded segment's horizontal error (thin; thinned to ~120 points
 /// evenly spaced in log time, which draw the same), their RMS (DRIFT.recorded_rms_m, when
@@ -53,12 +56,14 @@ Figure drift_figure(const pipeline::DriftSeries& drift,
                     const std::vector<pipeline::DriftSegment>& segments);
 
 /// "sampling-intervals": histogram of the regular sample intervals [ms] as stems at the bin
-/// centres (log count axis; empty bins left out), with the median marked.
+/// centres (log count axis; empty bins left out), with the median marked. The three lists must
+/// be equally long (ContractViolation otherwise).
 Figure interval_figure(const std::vector<double>& bin_low_s, const std::vector<double>& bin_high_s,
                        const std::vector<std::int64_t>& counts, double median_interval_s);
 
 /// "sampling-gaps": each gap's length against when it happened (hours since the first sample).
-/// (The report shows a sentence instead when there are no gaps.)
+/// (The report shows a sentence instead when there are no gaps.) START_S and LENGTH_S must be
+/// equally long (ContractViolation otherwise).
 Figure gaps_figure(const std::vector<double>& start_s, const std::vector<double>& length_s,
                    double duration_s, std::int64_t gap_count);
 

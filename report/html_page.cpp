@@ -53,10 +53,9 @@ void append_table(std::string& out, const Table& table) {
   for (const std::string& h : table.header) out.append("<th>").append(escaped(h)).append("</th>");
   out.append("</tr></thead>\n<tbody>\n");
   for (const auto& row : table.rows) {
-    if (row.size() != table.header.size()) {
-      throw InputError("report table '" + table.id + "': a row has " + std::to_string(row.size()) +
-                       " cells, the header " + std::to_string(table.header.size()));
-    }
+    IMUNOISE_EXPECT(row.size() == table.header.size(),
+                    "report table '" + table.id + "': a row has " + std::to_string(row.size()) +
+                        " cells, the header " + std::to_string(table.header.size()));
     out.append("<tr>");
     for (const std::string& cell : row) {
       out.append(looks_numeric(cell) ? "<td class=\"num\">" : "<td>");

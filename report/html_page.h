@@ -51,8 +51,8 @@ struct ReportPage {
 /// TEXT as HTML text or double-quoted attribute (see append_markup_text).
 std::string html_escape(std::string_view text);
 
-/// The HTML document of PAGE (UTF-8, `<!DOCTYPE html>`). Throws InputError if a table row's
-/// length differs from its header's.
+/// The HTML document of PAGE (UTF-8, `<!DOCTYPE html>`). Throws ContractViolation if a table
+/// row's length differs from its header's.
 std::string render_html(const ReportPage& page);
 
 }  // namespace imunoise::report

@@ -11,6 +11,7 @@
 
 #include "common/number_text.h"
 #include "common/sampling_gap.h"
+#include "common/sensor_kind.h"
 #include "models/noise_model.h"
 #include "report/figures.h"
 #include "report/result_tables.h"
@@ -35,11 +36,11 @@ FigureBlock add_figure(const Figure& figure, std::vector<ReportFile>& files) {
   return block;
 }
 
-/// The gyro and the accelerometer figure MAKE(gyro) builds, each that has data.
+/// The gyro and the accelerometer figure MAKE(kind) builds, each that has data.
 template <typename Make>
 void add_sensor_figures(PageSection& section, Make make, std::vector<ReportFile>& files) {
-  for (bool gyro : {true, false}) {
-    const Figure f = make(gyro);
+  for (const SensorKind kind : kSensorKinds) {
+    const Figure f = make(kind);
     if (!f.plot.series.empty()) section.figures.push_back(add_figure(f, files));
   }
 }
@@ -196,13 +197,13 @@ ReportDocument build_report_page(const io::ResultsDirectory& r, const std::strin
   if (r.model && r.allan) {
     PageSection s{"allan", "Allan deviation", {}, {}, {}, {}, {}};
     add_sensor_figures(
-        s, [&](bool gyro) { return allan_figure(gyro, r.allan->axes, *r.model); }, files);
+        s, [&](SensorKind kind) { return allan_figure(kind, r.allan->axes, *r.model); }, files);
     page.sections.push_back(std::move(s));
   }
   if (r.psd) {
     PageSection s{"psd", "Power spectral density", {}, {}, {}, {}, {}};
     add_sensor_figures(
-        s, [&](bool gyro) { return psd_figure(gyro, r.psd->axes); }, files);
+        s, [&](SensorKind kind) { return psd_figure(kind, r.psd->axes); }, files);
     page.sections.push_back(std::move(s));
   }
   if (r.drift_summary) page.sections.push_back(drift_section(r, files));

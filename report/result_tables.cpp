@@ -12,24 +12,25 @@
 
 #include "common/number_text.h"
 #include "common/sampling_gap.h"
+#include "common/sensor_kind.h"
 #include "models/datasheet_units.h"
 
 namespace imunoise::report {
 
 namespace {
 
-std::string term_label(NoiseTerm term, bool gyro) {
+std::string term_label(NoiseTerm term, SensorKind kind) {
   switch (term) {
     case NoiseTerm::quantization:
       return "Q quantization";
     case NoiseTerm::white_noise:
-      return gyro ? "N angle random walk" : "N velocity random walk";
+      return kind == SensorKind::gyro ? "N angle random walk" : "N velocity random walk";
     case NoiseTerm::bias_instability:
       return "B bias instability";
     case NoiseTerm::random_walk:
-      return gyro ? "K rate random walk" : "K acceleration random walk";
+      return kind == SensorKind::gyro ? "K rate random walk" : "K acceleration random walk";
     case NoiseTerm::ramp:
-      return gyro ? "R rate ramp" : "R acceleration ramp";
+      return kind == SensorKind::gyro ? "R rate ramp" : "R acceleration ramp";
   }
   return "";
 }
@@ -62,10 +63,10 @@ Table summary_table(const models::NoiseModel& model) {
   for (const models::AxisModel& axis : model.axes) {
     for (NoiseTerm term : kNoiseTerms) {
       const models::Estimate& e = axis.terms[term];
-      const models::DatasheetUnit unit = models::datasheet_unit(term, axis.gyro);
+      const models::DatasheetUnit unit = models::datasheet_unit(term, axis.kind);
       const double f = unit.factor;
       const double readoff = axis.readoff.slope[term];
-      std::vector<std::string> row{axis.name, term_label(term, axis.gyro)};
+      std::vector<std::string> row{axis.name, term_label(term, axis.kind)};
       if (e.identified) {
         row.push_back(num(e.value));
         row.push_back("[" + num(e.ci_low) + ", " + num(e.ci_high) + "]");
@@ -73,7 +74,7 @@ Table summary_table(const models::NoiseModel& model) {
         row.push_back("—");
         row.push_back(e.ci_high > 0.0 ? "< " + num(e.ci_high, 2) : "—");
       }
-      row.push_back(std::string(models::term_si_unit(term, axis.gyro)));
+      row.push_back(std::string(models::term_si_unit(term, axis.kind)));
       if (e.identified) {
         row.push_back(num(e.value * f));
         row.push_back("[" + num(e.ci_low * f) + ", " + num(e.ci_high * f) + "]");
@@ -100,13 +101,13 @@ Table gauss_markov_table(const models::NoiseModel& model) {
   for (const models::AxisModel& axis : model.axes) {
     for (const models::BiasInstabilityGm& gm : axis.bias_instability_gm) {
       t.rows.push_back({axis.name, gm.convention, num(gm.value.sigma),
-                        axis.gyro ? "rad/s" : "m/s^2", num(gm.value.tau_c_s)});
+                        std::string(si_rate_unit(axis.kind)), num(gm.value.tau_c_s)});
     }
     for (const models::GaussMarkovEstimate& gm : axis.gauss_markov) {
       t.rows.push_back({axis.name, "fitted GM term",
                         num(gm.value.sigma) + " [" + num(gm.sigma_ci_low, 3) + ", " +
                             num(gm.sigma_ci_high, 3) + "]",
-                        axis.gyro ? "rad/s" : "m/s^2",
+                        std::string(si_rate_unit(axis.kind)),
                         num(gm.value.tau_c_s) + " [" + num(gm.tau_c_ci_low_s, 3) + ", " +
                             num(gm.tau_c_ci_high_s, 3) + "]"});
     }

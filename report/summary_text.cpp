@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/number_text.h"
+#include "common/sensor_kind.h"
 #include "models/datasheet_units.h"
 #include "pipeline/recording.h"
 
@@ -38,13 +39,13 @@ std::string summary_text(const models::NoiseModel& model,
       << significant_number_text(100.0 * model.confidence, 3)
       << " % intervals, '-' = not identified (upper bound);\n"
       << "ieee952 = the graphical slope read-off of the OADEV curve, for traceability\n";
-  for (bool gyro : {true, false}) {
-    out << "\n" << (gyro ? "gyro" : "accel") << "\n";
+  for (const SensorKind kind : kSensorKinds) {
+    out << "\n" << sensor_name(kind) << "\n";
     for (NoiseTerm term : kNoiseTerms) {
-      const models::DatasheetUnit unit = models::datasheet_unit(term, gyro);
+      const models::DatasheetUnit unit = models::datasheet_unit(term, kind);
       out << "  " << term_name(term) << " [" << unit.ascii << "]\n";
       for (const models::AxisModel& axis : model.axes) {
-        if (axis.gyro != gyro) continue;
+        if (axis.kind != kind) continue;
         const models::Estimate& e = axis.terms[term];
         out << "    " << axis.name << ": " << estimate_text(e, unit);
         const double slope = axis.readoff.slope[term];

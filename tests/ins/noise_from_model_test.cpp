@@ -28,10 +28,10 @@ models::Estimate estimate(double value, double high) {
 }
 
 /// An axis with N, B, K and upper interval ends 1.1 N, 1.2 B, 2 K; τ_min = 29.6 s (§8.2).
-models::AxisModel axis(const std::string& name, bool gyro, double n, double b, double k) {
+models::AxisModel axis(const std::string& name, SensorKind kind, double n, double b, double k) {
   models::AxisModel a;
   a.name = name;
-  a.gyro = gyro;
+  a.kind = kind;
   a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 1.1 * n);
   a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 1.2 * b);
   a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(k, 2.0 * k);
@@ -45,12 +45,12 @@ models::AxisModel axis(const std::string& name, bool gyro, double n, double b, d
 models::NoiseModel six_axis_model() {
   models::NoiseModel m;
   m.sample_rate_hz = 200.0;
-  m.axes.push_back(axis("accel_z", false, 3.0e-3, 0.0, 3.0e-5));
-  m.axes.push_back(axis("gyro_y", true, 2.0e-4, 0.0, 1.0e-6));
-  m.axes.push_back(axis("gyro_x", true, kN, kB, kK));
-  m.axes.push_back(axis("accel_x", false, 1.47e-3, 4.9e-4, 1.0e-5));
-  m.axes.push_back(axis("gyro_z", true, 1.0e-4, 0.0, 3.0e-6));
-  m.axes.push_back(axis("accel_y", false, 2.0e-3, 0.0, 2.0e-5));
+  m.axes.push_back(axis("accel_z", SensorKind::accel, 3.0e-3, 0.0, 3.0e-5));
+  m.axes.push_back(axis("gyro_y", SensorKind::gyro, 2.0e-4, 0.0, 1.0e-6));
+  m.axes.push_back(axis("gyro_x", SensorKind::gyro, kN, kB, kK));
+  m.axes.push_back(axis("accel_x", SensorKind::accel, 1.47e-3, 4.9e-4, 1.0e-5));
+  m.axes.push_back(axis("gyro_z", SensorKind::gyro, 1.0e-4, 0.0, 3.0e-6));
+  m.axes.push_back(axis("accel_y", SensorKind::accel, 2.0e-3, 0.0, 2.0e-5));
   // gyro_y: no B but two fitted GM terms; the larger σ (5e-5 rad/s, 300 s) stands for it.
   m.axes[1].gauss_markov.push_back({{2.0e-5, 100.0}, 1.0e-5, 3.0e-5, 50.0, 200.0});
   m.axes[1].gauss_markov.push_back({{5.0e-5, 300.0}, 4.0e-5, 6.0e-5, 200.0, 400.0});
@@ -110,13 +110,13 @@ TEST(InsSensorNoise, ConventionAndConservativeOptions) {
 TEST(InsSensorNoise, NeedsThreeGyroAndThreeAccelAxes) {
   models::NoiseModel two;
   two.sample_rate_hz = 200.0;
-  two.axes.push_back(axis("gyro_x", true, kN, 0.0, kK));
-  two.axes.push_back(axis("accel_x", false, 1e-3, 0.0, 1e-5));
+  two.axes.push_back(axis("gyro_x", SensorKind::gyro, kN, 0.0, kK));
+  two.axes.push_back(axis("accel_x", SensorKind::accel, 1e-3, 0.0, 1e-5));
   test::expect_throw_containing<InputError>([&] { ins_sensor_noise(two, {}); },
                                             "needs three gyro and three accel axes; the model "
                                             "has 1 and 1");
   models::NoiseModel seven = six_axis_model();
-  seven.axes.push_back(axis("gyro_w", true, kN, 0.0, kK));
+  seven.axes.push_back(axis("gyro_w", SensorKind::gyro, kN, 0.0, kK));
   test::expect_throw_containing<InputError>([&] { ins_sensor_noise(seven, {}); },
                                             "the model has 4 and 3");
   models::NoiseModel no_rate = six_axis_model();

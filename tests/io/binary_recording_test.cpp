@@ -130,7 +130,7 @@ pipeline::Recording awkward_recording(std::size_t n) {
   for (std::size_t c = 0; c < 6; ++c) {
     pipeline::Channel ch;
     ch.name = pipeline::kImuChannelNames[c];
-    ch.unit = c < 3 ? "rad/s" : "m/s^2";
+    ch.kind = pipeline::kImuChannelKinds[c];
     ch.source_column = "column " + std::to_string(c + 2);
     ch.source_unit = c < 3 ? "rad" : "m/s";
     ch.from_increments = true;
@@ -141,7 +141,7 @@ pipeline::Recording awkward_recording(std::size_t n) {
     }
     rec.channels.push_back(ch);
   }
-  pipeline::Channel temperature{"temperature", "", {}, "temp_degc", "", false};
+  pipeline::Channel temperature{"temperature", std::nullopt, {}, "temp_degc", "", false};
   for (std::size_t i = 0; i < n; ++i)
     temperature.values.push_back(20.0 + 0.001 * static_cast<double>(i));
   rec.channels.push_back(temperature);
@@ -159,7 +159,7 @@ void expect_same_recording(const pipeline::Recording& expected, const pipeline::
     const pipeline::Channel& e = expected.channels[c];
     const pipeline::Channel& g = got.channels[c];
     EXPECT_EQ(e.name, g.name);
-    EXPECT_EQ(e.unit, g.unit);
+    EXPECT_EQ(e.unit(), g.unit());
     EXPECT_EQ(e.source_column, g.source_column);
     EXPECT_EQ(e.source_unit, g.source_unit);
     EXPECT_EQ(e.from_increments, g.from_increments);

@@ -51,7 +51,7 @@ void expect_same_content(const DiscreteModelFile& a, const DiscreteModelFile& b)
   ASSERT_EQ(a.white_noise.size(), b.white_noise.size());
   for (std::size_t i = 0; i < a.white_noise.size(); ++i) {
     EXPECT_EQ(a.white_noise[i].axis, b.white_noise[i].axis);
-    EXPECT_EQ(a.white_noise[i].gyro, b.white_noise[i].gyro);
+    EXPECT_EQ(a.white_noise[i].kind, b.white_noise[i].kind);
     EXPECT_EQ(a.white_noise[i].density, b.white_noise[i].density);
     EXPECT_EQ(a.white_noise[i].rate_sigma, b.white_noise[i].rate_sigma);
     EXPECT_EQ(a.white_noise[i].increment_sigma, b.white_noise[i].increment_sigma);
@@ -104,8 +104,8 @@ DiscreteModelFile awkward_file(int n, int p) {
   f.continuous.G = matrix(n, p);
   f.continuous.Qc = matrix(p, p);
   f.continuous.initial_variance = matrix(n, 1).col(0);
-  f.white_noise.push_back({"gyro_x", true, value(), value(), value()});
-  f.white_noise.push_back({"accel_x", false, value(), value(), value()});
+  f.white_noise.push_back({"gyro_x", SensorKind::gyro, value(), value(), value()});
+  f.white_noise.push_back({"accel_x", SensorKind::accel, value(), value(), value()});
   return f;
 }
 

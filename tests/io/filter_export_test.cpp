@@ -45,10 +45,10 @@ Estimate estimate(double value, double low, double high) {
   return e;
 }
 
-AxisModel axis(const std::string& name, bool gyro, double n, double b, double k) {
+AxisModel axis(const std::string& name, SensorKind kind, double n, double b, double k) {
   AxisModel a;
   a.name = name;
-  a.gyro = gyro;
+  a.kind = kind;
   a.terms[static_cast<int>(NoiseTerm::quantization)] = estimate(0.0, 0.0, 0.1 * n);
   a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 0.98 * n, 1.02 * n);
   a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 0.9 * b, 1.1 * b);
@@ -71,14 +71,14 @@ NoiseModel worked_example() {
   m.duration_s = 28800.0;
   m.samples = 5760000;
   for (const char* name : {"gyro_x", "gyro_y", "gyro_z"}) {
-    auto a = axis(name, true, 0.4 * units::kDegPerSqrtHour, 25.2 * units::kDegPerHour,
+    auto a = axis(name, SensorKind::gyro, 0.4 * units::kDegPerSqrtHour, 25.2 * units::kDegPerHour,
                   84.24 * units::kDegPerHourPerSqrtHour);
     a.bias_instability_gm.push_back({"peak_match", {1.314e-4, 15.6}});
     m.axes.push_back(a);
   }
   for (const char* name : {"accel_x", "accel_y", "accel_z"})
-    m.axes.push_back(
-        axis(name, false, 150.0 * units::kMicroGPerSqrtHz, 0.05 * units::kMilliG, 1e-4));
+    m.axes.push_back(axis(name, SensorKind::accel, 150.0 * units::kMicroGPerSqrtHz,
+                          0.05 * units::kMilliG, 1e-4));
   return m;
 }
 
@@ -172,7 +172,8 @@ TEST(FilterExport, DiscreteSigmasAt100HzForPx4AndVins) {
 TEST(FilterExport, PositiveRangeWarningForPx4) {
   auto quiet = worked_example();
   for (auto& a : quiet.axes)
-    if (!a.gyro) a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(1e-4, 1e-4, 1e-4);
+    if (a.kind == SensorKind::accel)
+      a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(1e-4, 1e-4, 1e-4);
   const auto px4 = export_config(quiet, request(ExportFormat::px4));
   EXPECT_NE(px4.find("WARNING: EKF2_ACC_NOISE = 0.001 is outside PX4's allowed range [0.01, 1.0]"),
             std::string::npos);

@@ -51,8 +51,8 @@ TEST(ReadRecording, RecognisesSimulateColumnNames) {
   ASSERT_EQ(rec.channels.size(), 6u);
   EXPECT_EQ(rec.channels[0].name, "gyro_x");
   EXPECT_EQ(rec.channels[5].name, "accel_z");
-  EXPECT_EQ(channel(rec, "gyro_y").unit, "rad/s");
-  EXPECT_EQ(channel(rec, "accel_x").unit, "m/s^2");
+  EXPECT_EQ(channel(rec, "gyro_y").unit(), "rad/s");
+  EXPECT_EQ(channel(rec, "accel_x").unit(), "m/s^2");
   EXPECT_EQ(channel(rec, "gyro_z").source_column, "gyro_z_rad_per_s");
   EXPECT_THAT(channel(rec, "accel_y").values, ElementsAre(5.0, 5.0, 5.0));
   EXPECT_NEAR(rec.sample_period_s, 0.01, 1e-15);
@@ -174,7 +174,7 @@ TEST(ReadRecording, ExtraColumnsKeepTheirValues) {
   config.extra_columns = {{"temperature_degc", "temp"}};
   const pipeline::Recording rec = read_recording(path, config);
   EXPECT_THAT(channel(rec, "temperature_degc").values, ElementsAre(25.5, 25.6));
-  EXPECT_EQ(channel(rec, "temperature_degc").unit, "");
+  EXPECT_EQ(channel(rec, "temperature_degc").unit(), "");
 }
 
 TEST(ReadRecording, ReportNamesFileLinesOfTimingAnomalies) {
@@ -281,7 +281,7 @@ TEST(ReadRecordingErrors, TooFewSamplesAndStuckClock) {
 TEST(RequireMinSamples, NamesFileCountAndPurpose) {
   pipeline::Recording rec;
   rec.source_path = "rec.csv";
-  rec.channels.push_back({"gyro_x", "rad/s", {1.0, 2.0, 3.0}, "gx", "rad/s", false});
+  rec.channels.push_back({"gyro_x", SensorKind::gyro, {1.0, 2.0, 3.0}, "gx", "rad/s", false});
   EXPECT_NO_THROW(pipeline::require_min_samples(rec, 3, "Allan deviation"));
   EXPECT_THAT(error_of([&] { pipeline::require_min_samples(rec, 100, "Allan deviation"); }),
               HasSubstr("rec.csv: too few samples: 3 (need at least 100 for Allan deviation)"));

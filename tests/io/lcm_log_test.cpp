@@ -105,7 +105,7 @@ TEST(LcmLog, ReadsRatesBitExactFromLcmLogFile) {
   for (int c = 0; c < 6; ++c) {
     const pipeline::Channel& ch = rec.channels[c];
     EXPECT_EQ(ch.name, names[c]);
-    EXPECT_EQ(ch.unit, c < 3 ? "rad/s" : "m/s^2");
+    EXPECT_EQ(ch.unit(), c < 3 ? "rad/s" : "m/s^2");
     EXPECT_EQ(ch.source_unit, c < 3 ? "rad/s" : "m/s^2");
     EXPECT_FALSE(ch.from_increments);
   }

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "io/atomic_output.h"
-#include "pipeline/imu_samples.h"
 #include "io/lcm_log_writer.h"
+#include "pipeline/imu_samples.h"
 #include "test_support.h"
 
 namespace imunoise::io {
@@ -47,7 +47,7 @@ models::NoiseModel random_model(std::uint32_t seed) {
   for (std::size_t c = 0; c < 6; ++c) {
     models::AxisModel axis;
     axis.name = pipeline::kImuChannelNames[c];
-    axis.gyro = c < 3;
+    axis.kind = c < 3 ? SensorKind::gyro : SensorKind::accel;
     for (std::size_t t = 0; t < 5; ++t) {
       models::Estimate& e = axis.terms[t];
       e.identified = (c + t) % 3 != 0;
@@ -79,7 +79,7 @@ TEST(LcmMessages, NoiseModelSurvivesEncodingExactly) {
     const models::AxisModel& a = model.axes[c];
     const models::AxisModel& b = back.axes[c];
     EXPECT_EQ(b.name, a.name);
-    EXPECT_EQ(b.gyro, a.gyro);
+    EXPECT_EQ(b.kind, a.kind);
     for (std::size_t t = 0; t < 5; ++t) {
       EXPECT_EQ(b.terms[t].value, a.terms[t].value) << a.name << " term " << t;
       EXPECT_EQ(b.terms[t].ci_low, a.terms[t].ci_low);
@@ -206,7 +206,8 @@ TEST(ImuSamples, TemperatureOnlyWhenEverySampleHasOne) {
   const pipeline::Recording a = pipeline::recording_from_imu_samples(all, "mem", "IMU");
   ASSERT_NE(a.find_channel("temperature"), nullptr);
   EXPECT_EQ(a.find_channel("temperature")->values, (std::vector<double>{20, 21, 22, 23}));
-  EXPECT_EQ(pipeline::recording_from_imu_samples(some, "mem", "IMU").find_channel("temperature"), nullptr);
+  EXPECT_EQ(pipeline::recording_from_imu_samples(some, "mem", "IMU").find_channel("temperature"),
+            nullptr);
 }
 
 TEST(ImuSamples, TooFewOrFrozenStampsAreInputErrors) {

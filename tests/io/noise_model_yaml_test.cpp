@@ -99,12 +99,12 @@ void expect_same(const ReadoffValues& a, const ReadoffValues& b, const std::stri
 }
 
 void expect_same(const AxisModel& a, const AxisModel& b) {
-  const auto& [name, gyro, terms, gauss_markov, sinusoids, bias_instability_gm, multi_gm,
+  const auto& [name, kind, terms, gauss_markov, sinusoids, bias_instability_gm, multi_gm,
                multi_gm_fraction_inside_ci, tau_min_adev_s, fit_tau_min_s, fit_tau_max_s, fit_note,
                readoff, psd_check_pass, psd_check_note] = a;
   const std::string at = "axis '" + name + "'";
   EXPECT_EQ(name, b.name);
-  EXPECT_EQ(gyro, b.gyro) << at;
+  EXPECT_EQ(kind, b.kind) << at;
   for (std::size_t t = 0; t < terms.size(); ++t) {
     expect_same(terms[t], b.terms[t], at + ".terms" + std::to_string(t));
   }
@@ -187,7 +187,7 @@ NoiseModel awkward_model() {
 
   AxisModel gyro;
   gyro.name = "gyro_x";
-  gyro.gyro = true;
+  gyro.kind = SensorKind::gyro;
   gyro.terms = {estimate(0.0, -0.0, 1.2e-07, false, s[1], s[4]),
                 estimate(kThird, 1e-300, kSum, true, "wnnls-oavar", "parametric bootstrap, 50"),
                 estimate(1e-300, kTiny, kHuge, true, s[6], s[3]),
@@ -212,7 +212,7 @@ NoiseModel awkward_model() {
 
   AxisModel accel;
   accel.name = "accel x: \"weird\" µ";
-  accel.gyro = false;
+  accel.kind = SensorKind::accel;
   for (std::size_t t = 0; t < accel.terms.size(); ++t) {
     accel.terms[t] = estimate(kThird * static_cast<double>(t), 0.0, 1.0 + static_cast<double>(t),
                               t % 2 == 0, s[8 + t], s[13 - t]);
@@ -232,7 +232,7 @@ NoiseModel awkward_model() {
 
   AxisModel bare;  // every optional block at its default: psd_check is omitted
   bare.name = "9lives";
-  bare.gyro = false;
+  bare.kind = SensorKind::accel;
 
   AxisModel unnamed = bare;
   unnamed.name = "";
@@ -440,7 +440,7 @@ TEST(NoiseModelYaml, MinimalFileLoadsWithDefaults) {
 
   const AxisModel& gyro = model.axes[0];
   EXPECT_EQ(gyro.name, "gyro_x");
-  EXPECT_TRUE(gyro.gyro);
+  EXPECT_EQ(gyro.kind, SensorKind::gyro);
   const Estimate& arw = gyro.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
   EXPECT_EQ(arw.value, 2.9e-05);
   EXPECT_EQ(arw.ci_low, 2.9e-05);  // interval defaults to the value
@@ -465,7 +465,7 @@ TEST(NoiseModelYaml, MinimalFileLoadsWithDefaults) {
 
   const AxisModel& accel = model.axes[1];
   EXPECT_EQ(accel.name, "accel_x");
-  EXPECT_FALSE(accel.gyro);
+  EXPECT_EQ(accel.kind, SensorKind::accel);
   EXPECT_EQ(accel.terms[static_cast<std::size_t>(NoiseTerm::bias_instability)].value, 3e-4);
 }
 

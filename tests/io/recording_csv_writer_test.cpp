@@ -53,7 +53,7 @@ pipeline::Recording imu_recording(std::size_t n) {
   for (std::size_t c = 0; c < 6; ++c) {
     pipeline::Channel ch;
     ch.name = pipeline::kImuChannelNames[c];
-    ch.unit = c < 3 ? "rad/s" : "m/s^2";
+    ch.kind = pipeline::kImuChannelKinds[c];
     ch.source_column = csv_column_name(ch);
     for (std::size_t i = 0; i < n; ++i) {
       ch.values.push_back(i < awkward.size() ? awkward[(i + c) % awkward.size()]
@@ -73,9 +73,9 @@ TEST(AppendCsvRow, WritesTheShortestRoundTripTextOfEveryNumber) {
 }
 
 TEST(CsvColumnName, SiChannelsGetTheirUnitSuffixOthersTheirName) {
-  pipeline::Channel gyro{"gyro_x", "rad/s", {}, "", "", false};
-  pipeline::Channel accel{"accel_z", "m/s^2", {}, "", "", false};
-  pipeline::Channel extra{"temperature", "", {}, "temp", "", false};
+  pipeline::Channel gyro{"gyro_x", SensorKind::gyro, {}, "", "", false};
+  pipeline::Channel accel{"accel_z", SensorKind::accel, {}, "", "", false};
+  pipeline::Channel extra{"temperature", std::nullopt, {}, "temp", "", false};
   EXPECT_EQ(csv_column_name(gyro), "gyro_x_rad_per_s");
   EXPECT_EQ(csv_column_name(accel), "accel_z_m_per_s2");
   EXPECT_EQ(csv_column_name(extra), "temperature");
@@ -89,7 +89,7 @@ TEST(WriteRecordingCsv, ReadsBackWithDefaultOptionsBitForBit) {
   ASSERT_EQ(back.channels.size(), 6u);
   for (std::size_t c = 0; c < 6; ++c) {
     EXPECT_EQ(back.channels[c].name, rec.channels[c].name);
-    EXPECT_EQ(back.channels[c].unit, rec.channels[c].unit);
+    EXPECT_EQ(back.channels[c].unit(), rec.channels[c].unit());
     expect_same_bits(back.channels[c].values, rec.channels[c].values, rec.channels[c].name);
   }
   expect_same_bits(back.time_s, rec.time_s, "time_s");
@@ -119,7 +119,8 @@ TEST(WriteRecordingCsv, HeaderNamesTheSourceAndEveryChannelsProvenance) {
   rec.channels[0].source_column = "dtheta_x";
   rec.channels[0].source_unit = "rad";
   rec.channels[0].from_increments = true;
-  pipeline::Channel temperature{"temperature", "", {20.5, 20.25, 20.0}, "temp", "", false};
+  pipeline::Channel temperature{"temperature", std::nullopt, {20.5, 20.25, 20.0},
+                                "temp",        "",           false};
   rec.channels.push_back(temperature);
   const std::string path = (test::make_temp_dir("csv_writer_header") / "rec.csv").string();
   write_recording_csv(rec, path);

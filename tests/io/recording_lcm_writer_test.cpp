@@ -31,12 +31,12 @@ pipeline::Recording recording(std::size_t n, bool with_temperature) {
   for (std::size_t c = 0; c < 6; ++c) {
     pipeline::Channel ch;
     ch.name = pipeline::kImuChannelNames[c];
-    ch.unit = c < 3 ? "rad/s" : "m/s^2";
+    ch.kind = pipeline::kImuChannelKinds[c];
     for (std::size_t i = 0; i < n; ++i) ch.values.push_back(0.001 * (c + 1) + 1e-7 * i * i);
     rec.channels.push_back(std::move(ch));
   }
   if (with_temperature) {
-    pipeline::Channel t{"temperature", "", {}, "temp", "", false};
+    pipeline::Channel t{"temperature", std::nullopt, {}, "temp", "", false};
     for (std::size_t i = 0; i < n; ++i) t.values.push_back(20.0 + 0.25 * i);
     rec.channels.push_back(std::move(t));
   }

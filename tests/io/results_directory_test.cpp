@@ -35,11 +35,11 @@ models::NoiseModel example_model() {
   m.data_quality = {"2 gaps"};
   models::AxisModel gyro;
   gyro.name = "gyro_x";
-  gyro.gyro = true;
+  gyro.kind = SensorKind::gyro;
   gyro.terms[NoiseTerm::white_noise] = {1e-4, 9e-5, 1.1e-4, true, "wnnls-oavar", ""};
   models::AxisModel accel;
   accel.name = "accel_z";
-  accel.gyro = false;
+  accel.kind = SensorKind::accel;
   accel.terms[NoiseTerm::random_walk] = {2e-5, 1e-5, 3e-5, true, "wnnls-oavar", ""};
   m.axes = {gyro, accel};
   return m;

@@ -304,16 +304,14 @@ TEST(SimulationModel, DemoModelLoadsAndRoundTripsThroughTheSiKeys) {
 
   // Written back under the SI keys (as the CSV header does) and read again: the same model.
   std::string yaml;
-  const auto write_back = [&yaml](const char* name, Sensor sensor,
-                                  const std::array<SimulationAxis, 3>& axes) {
-    yaml += std::string(name) + ":\n";
+  const auto write_back = [&yaml](SensorKind kind, const std::array<SimulationAxis, 3>& axes) {
+    yaml += std::string(sensor_name(kind)) + ":\n";
     for (std::size_t a = 0; a < 3; ++a) {
-      yaml +=
-          std::string("  ") + "xyz"[a] + ":\n" + as_yaml_mapping(si_terms_text(axes[a], sensor));
+      yaml += std::string("  ") + "xyz"[a] + ":\n" + as_yaml_mapping(si_terms_text(axes[a], kind));
     }
   };
-  write_back("gyro", Sensor::kGyro, demo.gyro);
-  write_back("accel", Sensor::kAccel, demo.accel);
+  write_back(SensorKind::gyro, demo.gyro);
+  write_back(SensorKind::accel, demo.accel);
   const SimulationModelFile again = parse_simulation_model(yaml, "again.yaml");
   for (std::size_t a = 0; a < 3; ++a) {
     expect_same_axis(again.gyro[a], demo.gyro[a], "gyro " + std::to_string(a));

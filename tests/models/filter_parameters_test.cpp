@@ -26,10 +26,10 @@ Estimate estimate(double value, double low, double high) {
 }
 
 /// An axis whose five terms are N, B, K (values ×SCALE) with intervals ±10 %/+20 %.
-AxisModel axis(const std::string& name, bool gyro, double n, double b, double k) {
+AxisModel axis(const std::string& name, SensorKind kind, double n, double b, double k) {
   AxisModel a;
   a.name = name;
-  a.gyro = gyro;
+  a.kind = kind;
   a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 0.9 * n, 1.1 * n);
   a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 0.8 * b, 1.2 * b);
   a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(k, 0.5 * k, 2.0 * k);
@@ -46,12 +46,12 @@ AxisModel axis(const std::string& name, bool gyro, double n, double b, double k)
 NoiseModel example_model() {
   NoiseModel m;
   m.sample_rate_hz = 200.0;
-  m.axes.push_back(axis("gyro_x", true, 1.16355e-4, 1.22173e-4, 6.80678e-6));
-  m.axes.push_back(axis("gyro_y", true, 2.0e-4, 1.0e-4, 1.0e-6));
-  m.axes.push_back(axis("gyro_z", true, 1.0e-4, 0.5e-4, 3.0e-6));
-  m.axes.push_back(axis("accel_x", false, 1.47e-3, 4.9e-4, 2.0e-5));
-  m.axes.push_back(axis("accel_y", false, 1.0e-3, 3.0e-4, 1.0e-5));
-  m.axes.push_back(axis("accel_z", false, 2.0e-3, 2.0e-4, 3.0e-5));
+  m.axes.push_back(axis("gyro_x", SensorKind::gyro, 1.16355e-4, 1.22173e-4, 6.80678e-6));
+  m.axes.push_back(axis("gyro_y", SensorKind::gyro, 2.0e-4, 1.0e-4, 1.0e-6));
+  m.axes.push_back(axis("gyro_z", SensorKind::gyro, 1.0e-4, 0.5e-4, 3.0e-6));
+  m.axes.push_back(axis("accel_x", SensorKind::accel, 1.47e-3, 4.9e-4, 2.0e-5));
+  m.axes.push_back(axis("accel_y", SensorKind::accel, 1.0e-3, 3.0e-4, 1.0e-5));
+  m.axes.push_back(axis("accel_z", SensorKind::accel, 2.0e-3, 2.0e-4, 3.0e-5));
   m.axes[0].bias_instability_gm.push_back({"peak_match", {1.314e-4, 15.6}});  // §8.3 (b)
   return m;
 }

@@ -47,7 +47,7 @@ TEST(AxisAnalysis, WhitePlusRandomWalkIsRecoveredWithIntervalsAroundTheTruth) {
   const std::vector<double> rate = simulate(truth, 50.0, 2.0 * 3600.0, 11);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 30;
-  const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+  const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
   const auto& n = a.model.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
   const auto& k = a.model.terms[static_cast<std::size_t>(NoiseTerm::random_walk)];
   ASSERT_TRUE(n.identified);
@@ -82,7 +82,7 @@ TEST(AxisAnalysis, BiasInstabilityGetsEveryGaussMarkovConvention) {
   const std::vector<double> rate = simulate(truth, 20.0, 2.0 * 3600.0, 5);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;  // least-squares intervals: fast path
-  const AxisAnalysis a = analyze_axis("gyro_y", true, rate, 0.05, 1, options);
+  const AxisAnalysis a = analyze_axis("gyro_y", SensorKind::gyro, rate, 0.05, 1, options);
   const auto& b = a.model.terms[static_cast<std::size_t>(NoiseTerm::bias_instability)];
   ASSERT_TRUE(b.identified);
   EXPECT_NEAR(b.value / truth.bias_instability, 1.0, 0.3);
@@ -107,8 +107,8 @@ TEST(AxisAnalysis, LowPassRegionIsDroppedFromTheFit) {
   }
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  const AxisAnalysis plain = analyze_axis("gyro_x", true, white, 0.01, 0, options);
-  const AxisAnalysis low = analyze_axis("gyro_x", true, filtered, 0.01, 0, options);
+  const AxisAnalysis plain = analyze_axis("gyro_x", SensorKind::gyro, white, 0.01, 0, options);
+  const AxisAnalysis low = analyze_axis("gyro_x", SensorKind::gyro, filtered, 0.01, 0, options);
   EXPECT_DOUBLE_EQ(low_pass_tau_min(plain.oadev), 0.01);
   EXPECT_GT(low_pass_tau_min(low.oadev), 0.01);
   EXPECT_GT(low.fit.tau_min_s, 0.01);
@@ -127,7 +127,7 @@ TEST(AxisAnalysis, CandidateSinusoidIsFittedWithItsAmplitude) {
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
   options.fit.sinusoid_frequencies_hz = {0.1};
-  const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+  const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
   ASSERT_EQ(a.model.sinusoids.size(), 1u);
   EXPECT_NEAR(std::abs(a.model.sinusoids[0].amplitude) / 1e-3, 1.0, 0.1);
   EXPECT_NEAR(a.model.terms[1].value / truth.white_noise, 1.0, 0.05);
@@ -138,15 +138,17 @@ TEST(AxisAnalysis, BadRecordsGiveClearErrors) {
   options.bootstrap_replicates = 0;
   const std::vector<double> constant(1000, 0.25);
   test::expect_throw_containing<AnalysisError>(
-      [&] { analyze_axis("gyro_z", true, constant, 0.01, 0, options); }, "constant");
+      [&] { analyze_axis("gyro_z", SensorKind::gyro, constant, 0.01, 0, options); }, "constant");
   std::vector<double> with_nan(1000, 0.0);
   for (std::size_t i = 0; i < with_nan.size(); ++i) with_nan[i] = std::sin(0.1 * i);
   with_nan[500] = std::numeric_limits<double>::quiet_NaN();
   test::expect_throw_containing<AnalysisError>(
-      [&] { analyze_axis("accel_x", false, with_nan, 0.01, 0, options); }, "sample 500");
+      [&] { analyze_axis("accel_x", SensorKind::accel, with_nan, 0.01, 0, options); },
+      "sample 500");
   const std::vector<double> tiny{1.0, 2.0, 3.0};
   test::expect_throw_containing<AnalysisError>(
-      [&] { analyze_axis("accel_y", false, tiny, 0.01, 0, options); }, "too few samples");
+      [&] { analyze_axis("accel_y", SensorKind::accel, tiny, 0.01, 0, options); },
+      "too few samples");
 }
 
 TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow) {
@@ -154,7 +156,7 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   const std::vector<double> rate = simulate(truth, 50.0, 3600.0, 21);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  const AxisAnalysis a = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+  const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
   const std::vector<analysis::FitPoint> points = analysis::fit_points(a.oadev);
   const double bound = analysis::profile_upper_bound(points, a.fit, NoiseTerm::ramp, 0.95);
   ASSERT_TRUE(std::isfinite(bound));
@@ -165,16 +167,16 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   EXPECT_LT(bound * last.tau_s / std::sqrt(2.0), 3.0 * last.value);
 }
 
-// The progress callback (common/progress_callback.h) only observes: the same record gives bit-identical
-// curves, coefficients and intervals with and without it, also with the bootstrap on two
-// threads reporting concurrently. The reports cover the documented units: 4 + replicates,
+// The progress callback (common/progress_callback.h) only observes: the same record gives
+// bit-identical curves, coefficients and intervals with and without it, also with the bootstrap on
+// two threads reporting concurrently. The reports cover the documented units: 4 + replicates,
 // ending at done == total with stage "done".
 TEST(AxisAnalysis, ProgressCallbackDoesNotChangeTheResult) {
   const std::vector<double> rate = simulate(white_rw_truth(), 50.0, 600.0, 5);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 8;
   options.threads = 2;
-  const AxisAnalysis quiet = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+  const AxisAnalysis quiet = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
 
   std::mutex mutex;
   std::vector<std::string> stages;
@@ -186,7 +188,7 @@ TEST(AxisAnalysis, ProgressCallbackDoesNotChangeTheResult) {
     total_seen = total;
     ++calls;
   };
-  const AxisAnalysis reported = analyze_axis("gyro_x", true, rate, 0.02, 0, options);
+  const AxisAnalysis reported = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
 
   EXPECT_EQ(total_seen, 4 + 8);
   EXPECT_EQ(largest, total_seen);

@@ -31,10 +31,10 @@ models::NoiseModel fitted_model() {
   for (int c = 0; c < 6; ++c) {
     models::AxisModel a;
     a.name = kImuChannelNames[c];
-    a.gyro = c < 3;
-    a.terms[NoiseTerm::white_noise].value = a.gyro ? kGyroN : kAccelN;
+    a.kind = c < 3 ? SensorKind::gyro : SensorKind::accel;
+    a.terms[NoiseTerm::white_noise].value = a.kind == SensorKind::gyro ? kGyroN : kAccelN;
     a.terms[NoiseTerm::white_noise].identified = true;
-    a.terms[NoiseTerm::random_walk].value = a.gyro ? kGyroK : kAccelK;
+    a.terms[NoiseTerm::random_walk].value = a.kind == SensorKind::gyro ? kGyroK : kAccelK;
     a.terms[NoiseTerm::random_walk].identified = true;
     m.axes.push_back(a);
   }
@@ -66,7 +66,7 @@ Recording simulated_recording(double duration_s, double turn_deg_per_s = 0.0) {
   for (int c = 0; c < 6; ++c) {
     Channel channel;
     channel.name = kImuChannelNames[c];
-    channel.unit = c < 3 ? "rad/s" : "m/s^2";
+    channel.kind = kImuChannelKinds[c];
     channel.values.resize(n);
     r.channels.push_back(std::move(channel));
   }

@@ -144,7 +144,7 @@ TEST(GapPolicy, SplitRecoversWhiteNoiseWithinItsStatisticalTolerance) {
   }
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  const AxisAnalysis a = analyze_axis_pieces("gyro_x", true, pieces, tau0, 0, options);
+  const AxisAnalysis a = analyze_axis_pieces("gyro_x", SensorKind::gyro, pieces, tau0, 0, options);
   ASSERT_FALSE(a.oadev.points.empty());
   EXPECT_EQ(a.oadev.piece_n_phase.size(), 4u);
   const auto& nn = a.model.terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
@@ -167,9 +167,9 @@ TEST(GapPolicy, OnePieceIsExactlyTheSingleRecordAnalysis) {
   const std::vector<double> y = white_noise(20000, 0.01, 4);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  const AxisAnalysis a = analyze_axis("gyro_z", true, y, 0.005, 2, options);
+  const AxisAnalysis a = analyze_axis("gyro_z", SensorKind::gyro, y, 0.005, 2, options);
   const std::span<const double> one[] = {y};
-  const AxisAnalysis b = analyze_axis_pieces("gyro_z", true, one, 0.005, 2, options);
+  const AxisAnalysis b = analyze_axis_pieces("gyro_z", SensorKind::gyro, one, 0.005, 2, options);
   ASSERT_EQ(a.oadev.points.size(), b.oadev.points.size());
   for (std::size_t i = 0; i < a.oadev.points.size(); ++i) {
     EXPECT_EQ(a.oadev.points[i].value, b.oadev.points[i].value);
@@ -189,18 +189,20 @@ TEST(AxisEdgeCases, TooShortConstantAndNonFiniteRecordsAreClearErrors) {
   for (std::size_t n : {std::size_t{1}, std::size_t{2}, std::size_t{15}}) {
     const std::vector<double> y = white_noise(n, 1.0, 1);
     test::expect_throw_containing<AnalysisError>(
-        [&] { (void)analyze_axis("gyro_x", true, y, 0.01, 0, options); }, "too few samples");
+        [&] { (void)analyze_axis("gyro_x", SensorKind::gyro, y, 0.01, 0, options); },
+        "too few samples");
   }
   const std::vector<double> constant(5000, -9.80665);
   test::expect_throw_containing<AnalysisError>(
-      [&] { (void)analyze_axis("accel_z", false, constant, 0.01, 5, options); },
+      [&] { (void)analyze_axis("accel_z", SensorKind::accel, constant, 0.01, 5, options); },
       "the signal is constant");
   const double inf = std::numeric_limits<double>::infinity();
   for (double bad : {std::nan(""), inf, -inf}) {
     std::vector<double> y = white_noise(5000, 1.0, 2);
     y[1234] = bad;
     test::expect_throw_containing<AnalysisError>(
-        [&] { (void)analyze_axis("gyro_y", true, y, 0.01, 1, options); }, "sample 1234");
+        [&] { (void)analyze_axis("gyro_y", SensorKind::gyro, y, 0.01, 1, options); },
+        "sample 1234");
   }
 }
 
@@ -212,7 +214,7 @@ TEST(AxisEdgeCases, ValuesNearTheFloatLimitsGiveAResultOrAClearError) {
   for (double scale : {1e-30, 1e-12, 1e12, 1e30}) {
     std::vector<double> y(unit);
     for (double& v : y) v *= scale;
-    const AxisAnalysis a = analyze_axis("gyro_x", true, y, 0.01, 0, options);
+    const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, y, 0.01, 0, options);
     expect_finite_model(a.model);
     const double n = a.model.terms[static_cast<std::size_t>(NoiseTerm::white_noise)].value;
     EXPECT_NEAR(n / (scale * std::sqrt(0.01)), 1.0, 0.05) << scale;
@@ -222,13 +224,15 @@ TEST(AxisEdgeCases, ValuesNearTheFloatLimitsGiveAResultOrAClearError) {
     std::vector<double> y(unit);
     for (double& v : y) v *= scale;
     test::expect_throw_containing<AnalysisError>(
-        [&] { (void)analyze_axis("gyro_x", true, y, 0.01, 0, options); }, "double precision");
+        [&] { (void)analyze_axis("gyro_x", SensorKind::gyro, y, 0.01, 0, options); },
+        "double precision");
   }
   // A spread that itself overflows (−1.5e308 … 1.5e308) is the same clear error.
   std::vector<double> y(unit);
   for (std::size_t i = 0; i < y.size(); ++i) y[i] = (i % 2 == 0 ? 1.5e308 : -1.5e308);
   test::expect_throw_containing<AnalysisError>(
-      [&] { (void)analyze_axis("gyro_x", true, y, 0.01, 0, options); }, "double precision");
+      [&] { (void)analyze_axis("gyro_x", SensorKind::gyro, y, 0.01, 0, options); },
+      "double precision");
 }
 
 TEST(AxisEdgeCases, HugeConstantBiasGivesTheCoefficientsOfTheNoiseAlone) {
@@ -238,8 +242,8 @@ TEST(AxisEdgeCases, HugeConstantBiasGivesTheCoefficientsOfTheNoiseAlone) {
   const std::vector<double> noise = white_noise(50000, 1e-3, 12);
   std::vector<double> biased(noise.size());
   for (std::size_t i = 0; i < noise.size(); ++i) biased[i] = 1e3 + noise[i];
-  const AxisAnalysis a = analyze_axis("accel_x", false, noise, 0.01, 3, options);
-  const AxisAnalysis b = analyze_axis("accel_x", false, biased, 0.01, 3, options);
+  const AxisAnalysis a = analyze_axis("accel_x", SensorKind::accel, noise, 0.01, 3, options);
+  const AxisAnalysis b = analyze_axis("accel_x", SensorKind::accel, biased, 0.01, 3, options);
   ASSERT_EQ(a.oadev.points.size(), b.oadev.points.size());
   for (std::size_t i = 0; i < a.oadev.points.size(); ++i) {
     EXPECT_NEAR(b.oadev.points[i].value / a.oadev.points[i].value, 1.0, 1e-6) << i;

@@ -34,11 +34,11 @@ models::Estimate estimate(double value) {
 }
 
 /// An axis with N, B, K and ramp R (upper interval ends twice the values); τ_min = 29.6 s.
-models::AxisModel axis(const std::string& name, bool gyro, double n, double b, double k,
+models::AxisModel axis(const std::string& name, SensorKind kind, double n, double b, double k,
                        double r = 0.0) {
   models::AxisModel a;
   a.name = name;
-  a.gyro = gyro;
+  a.kind = kind;
   a.terms[NoiseTerm::white_noise] = estimate(n);
   a.terms[NoiseTerm::bias_instability] = estimate(b);
   a.terms[NoiseTerm::random_walk] = estimate(k);
@@ -66,7 +66,7 @@ models::FilterParameterOptions each_axis(bool conservative = false) {
 }
 
 TEST(SensorStates, RandomWalkBiasIsOneStateWithQcKSquared) {
-  const SensorStates s = sensor_states(one_gyro(axis("gyro_x", true, kN, kB, kK)),
+  const SensorStates s = sensor_states(one_gyro(axis("gyro_x", SensorKind::gyro, kN, kB, kK)),
                                        ins::BiasModel::random_walk, each_axis(), kDt);
   ASSERT_EQ(s.continuous.state_names, (std::vector<std::string>{"gyro_x_bias_rw_rad_per_s"}));
   EXPECT_EQ(s.continuous.F(0, 0), 0.0);
@@ -80,11 +80,11 @@ TEST(SensorStates, RandomWalkBiasIsOneStateWithQcKSquared) {
 }
 
 TEST(SensorStates, WhiteNoiseIsAnInputWithItsPerSampleSigmas) {
-  const SensorStates s = sensor_states(one_gyro(axis("gyro_x", true, kN, 0.0, kK)),
+  const SensorStates s = sensor_states(one_gyro(axis("gyro_x", SensorKind::gyro, kN, 0.0, kK)),
                                        ins::BiasModel::random_walk, each_axis(), kDt);
   ASSERT_EQ(s.white_noise.size(), 1u);
   EXPECT_EQ(s.white_noise[0].axis, "gyro_x");
-  EXPECT_TRUE(s.white_noise[0].gyro);
+  EXPECT_EQ(s.white_noise[0].kind, SensorKind::gyro);
   EXPECT_EQ(s.white_noise[0].density, kN);
   // theory.md §6.2: σ_rate = N/√Δt (1.6455e-3 rad/s at 200 Hz, §8.2), σ_increment = N·√Δt.
   EXPECT_LT(rel(s.white_noise[0].rate_sigma, kN / std::sqrt(kDt)), 1e-15);
@@ -94,7 +94,7 @@ TEST(SensorStates, WhiteNoiseIsAnInputWithItsPerSampleSigmas) {
 }
 
 TEST(SensorStates, GaussMarkovBiasIsBAsOneGmByTheConvention) {
-  const SensorStates s = sensor_states(one_gyro(axis("gyro_x", true, kN, kB, kK)),
+  const SensorStates s = sensor_states(one_gyro(axis("gyro_x", SensorKind::gyro, kN, kB, kK)),
                                        ins::BiasModel::gauss_markov, each_axis(), kDt);
   ASSERT_EQ(s.continuous.state_names,
             (std::vector<std::string>{"gyro_x_bias_instability_gm_rad_per_s"}));
@@ -109,7 +109,7 @@ TEST(SensorStates, GaussMarkovBiasIsBAsOneGmByTheConvention) {
 
 TEST(SensorStates, BothBiasModelsKeepEveryTermAndTheRampIsBiasAndSlope) {
   constexpr double kR = 1e-7;  // ramp [rad/s²]
-  models::AxisModel a = axis("accel_x", false, 1.47e-3, 4.9e-4, 1e-4, kR);
+  models::AxisModel a = axis("accel_x", SensorKind::accel, 1.47e-3, 4.9e-4, 1e-4, kR);
   a.gauss_markov.push_back({{2.0e-4, 100.0}, 1.0e-4, 3.0e-4, 50.0, 200.0});
   const SensorStates s = sensor_states(one_gyro(a), ins::BiasModel::both, each_axis(), kDt);
   EXPECT_EQ(s.continuous.state_names,
@@ -123,11 +123,11 @@ TEST(SensorStates, BothBiasModelsKeepEveryTermAndTheRampIsBiasAndSlope) {
   // Ramp [bias, slope]: P₀ = diag(0, R²).
   EXPECT_EQ(s.continuous.initial_variance(3), 0.0);
   EXPECT_EQ(s.continuous.initial_variance(4), kR * kR);
-  EXPECT_FALSE(s.white_noise[0].gyro);
+  EXPECT_EQ(s.white_noise[0].kind, SensorKind::accel);
 }
 
 TEST(SensorStates, ConservativeFittedGmTakesTheUpperEndOfSigma) {
-  models::AxisModel a = axis("gyro_x", true, kN, 0.0, 0.0);
+  models::AxisModel a = axis("gyro_x", SensorKind::gyro, kN, 0.0, 0.0);
   a.gauss_markov.push_back({{2.0e-5, 100.0}, 1.0e-5, 3.0e-5, 50.0, 200.0});
   const SensorStates best =
       sensor_states(one_gyro(a), ins::BiasModel::gauss_markov, each_axis(false), kDt);
@@ -161,9 +161,10 @@ TEST(DroppedTerms, EachBiasModelLeavesOutWhatItCannotCarry) {
 models::NoiseModel six_axes() {
   models::NoiseModel m;
   m.sample_rate_hz = 200.0;
-  for (const char* n : {"gyro_x", "gyro_y", "gyro_z"}) m.axes.push_back(axis(n, true, kN, kB, kK));
+  for (const char* n : {"gyro_x", "gyro_y", "gyro_z"})
+    m.axes.push_back(axis(n, SensorKind::gyro, kN, kB, kK));
   for (const char* n : {"accel_x", "accel_y", "accel_z"})
-    m.axes.push_back(axis(n, false, 1.471e-3, 4.9e-4, 1e-4));
+    m.axes.push_back(axis(n, SensorKind::accel, 1.471e-3, 4.9e-4, 1e-4));
   return m;
 }
 
@@ -206,7 +207,7 @@ TEST(InsStates, WhiteNoiseGyrosThenAccelsAndDroppedTermsPerAxis) {
                                        "accel_x", "accel_y", "accel_z"};
   for (std::size_t i = 0; i < 6; ++i) {
     EXPECT_EQ(s.white_noise[i].axis, order[i]);
-    EXPECT_EQ(s.white_noise[i].gyro, i < 3);
+    EXPECT_EQ(s.white_noise[i].kind, i < 3 ? SensorKind::gyro : SensorKind::accel);
   }
   EXPECT_LT(rel(s.white_noise[0].rate_sigma, kN / std::sqrt(0.01)), 1e-15);
   // Every axis has B: with the RW model each loses its GM, gyro and accel of x, then y, z.

@@ -55,7 +55,7 @@ models::NoiseModel gyro_model() {
   m.confidence = 0.95;
   models::AxisModel a;
   a.name = "gyro_x";
-  a.gyro = true;
+  a.kind = SensorKind::gyro;
   const double n = 1e-4, b = 2e-5, k = 3e-7;
   a.terms[1].value = n;
   a.terms[1].identified = true;
@@ -86,7 +86,7 @@ io::AllanAxis gyro_curve() {
 }
 
 TEST(AllanFigure, ModelAndTermLinesFollowTheClosedForms) {
-  const Figure f = allan_figure(true, {gyro_curve()}, gyro_model());
+  const Figure f = allan_figure(SensorKind::gyro, {gyro_curve()}, gyro_model());
   EXPECT_EQ(f.name, "allan-gyro");
   const Series* total = find_series(f, "gyro_x model");
   const Series* n = find_series(f, "gyro_x term N");
@@ -112,7 +112,7 @@ TEST(AllanFigure, ModelAndTermLinesFollowTheClosedForms) {
 }
 
 TEST(AllanFigure, ReadoffPointsLieOnTheTermLinesWhereIeee952ReadsThem) {
-  const Figure f = allan_figure(true, {gyro_curve()}, gyro_model());
+  const Figure f = allan_figure(SensorKind::gyro, {gyro_curve()}, gyro_model());
   ASSERT_EQ(f.plot.points.size(), 3u);  // N, B, K (Q and R not read off)
   for (const PointLabel& p : f.plot.points) {
     const std::string symbol = p.text.substr(p.text.size() - 1);
@@ -130,14 +130,14 @@ TEST(AllanFigure, ReadoffPointsLieOnTheTermLinesWhereIeee952ReadsThem) {
 }
 
 TEST(AllanFigure, OtherSensorAxesAreLeftOut) {
-  const Figure f = allan_figure(false, {gyro_curve()}, gyro_model());
+  const Figure f = allan_figure(SensorKind::accel, {gyro_curve()}, gyro_model());
   EXPECT_EQ(f.name, "allan-accel");
   EXPECT_TRUE(f.plot.series.empty());
   EXPECT_TRUE(check_xml(render_svg(f.plot)).ok);
 }
 
 TEST(FigureCsv, HoldsExactlyThePlottedPointsWithUnitsInTheHeader) {
-  const Figure f = allan_figure(true, {gyro_curve()}, gyro_model());
+  const Figure f = allan_figure(SensorKind::gyro, {gyro_curve()}, gyro_model());
   const auto lines = lines_of(figure_csv(f));
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines[0], "series,tau_s,adev_rad_per_s,adev_rad_per_s_ci_low,adev_rad_per_s_ci_high");
@@ -195,7 +195,7 @@ TEST(IntervalFigure, OneStemPerNonEmptyBinAndOneBinShowsTheStep) {
   EXPECT_NEAR(*one.plot.x.min, 18.0, 1e-9);
   EXPECT_NEAR(*one.plot.x.max, 22.0, 1e-9);
   EXPECT_TRUE(check_xml(render_svg(one.plot)).ok);
-  EXPECT_THROW(interval_figure({0.0}, {}, {1}, 0.01), InputError);
+  EXPECT_THROW(interval_figure({0.0}, {}, {1}, 0.01), ContractViolation);
 }
 
 TEST(GapsFigure, NoGapsIsStillAValidPlot) {
@@ -258,7 +258,7 @@ TEST(HtmlPage, RowLengthMismatchIsAnError) {
   PageSection s;
   s.tables.push_back({"t", "", {"a", "b"}, {{"1"}}});
   page.sections.push_back(s);
-  EXPECT_THROW(render_html(page), InputError);
+  EXPECT_THROW(render_html(page), ContractViolation);
 }
 
 }  // namespace

@@ -43,10 +43,10 @@ std::vector<std::string> table_ids(const PageSection& s) {
   return ids;
 }
 
-models::AxisModel axis_model(const std::string& name, bool gyro, double white) {
+models::AxisModel axis_model(const std::string& name, SensorKind kind, double white) {
   models::AxisModel a;
   a.name = name;
-  a.gyro = gyro;
+  a.kind = kind;
   a.terms[NoiseTerm::white_noise] = {white, 0.9 * white, 1.1 * white, true, "wnnls-oavar", ""};
   return a;
 }
@@ -87,7 +87,8 @@ io::ResultsDirectory full_results() {
   m.samples = 720000;
   m.confidence = 0.95;
   m.data_quality = {"2 gaps in the time stamps"};
-  m.axes = {axis_model("gyro_x", true, 1e-4), axis_model("accel_z", false, 2e-3)};
+  m.axes = {axis_model("gyro_x", SensorKind::gyro, 1e-4),
+            axis_model("accel_z", SensorKind::accel, 2e-3)};
   m.axes[0].bias_instability_gm = {{"peak_match", {2e-5, 30.0}}};
   m.axes[1].psd_check_pass = false;
   m.axes[1].psd_check_note = "model 5 dB below the PSD";
@@ -201,7 +202,7 @@ TEST(ReportPage, PlotFilesAreWhatThePageShows) {
   EXPECT_EQ(written, expected);
   // The CSV is the figure's own.
   const io::ResultsDirectory r = full_results();
-  const std::string psd_csv = figure_csv(psd_figure(true, r.psd->axes));
+  const std::string psd_csv = figure_csv(psd_figure(SensorKind::gyro, r.psd->axes));
   bool found = false;
   for (const ReportFile& file : doc.plot_files) {
     if (file.relative_path == "plots/psd-gyro.csv") {

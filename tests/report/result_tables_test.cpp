@@ -31,7 +31,7 @@ models::NoiseModel gyro_model() {
   m.confidence = 0.9;
   models::AxisModel a;
   a.name = "gyro_x";
-  a.gyro = true;
+  a.kind = SensorKind::gyro;
   a.terms[NoiseTerm::white_noise] = {1e-4, 9e-5, 1.1e-4, true, "wnnls-oavar", ""};
   a.terms[NoiseTerm::random_walk] = {0.0, 0.0, 3e-7, false, "", ""};
   a.readoff.slope[NoiseTerm::white_noise] = 1.05e-4;
@@ -49,7 +49,8 @@ TEST(SummaryTable, SiAndDatasheetValuesSitInTheirColumns) {
   EXPECT_EQ(t.rows.size(), 5u);  // one per term
   const auto n = row_of(t, "gyro_x", "N angle random walk");
   ASSERT_EQ(n.size(), 10u);
-  const models::DatasheetUnit unit = models::datasheet_unit(NoiseTerm::white_noise, true);
+  const models::DatasheetUnit unit =
+      models::datasheet_unit(NoiseTerm::white_noise, SensorKind::gyro);
   EXPECT_EQ(n[2], "0.0001");
   EXPECT_EQ(n[3], "[9e-05, 0.00011]");
   EXPECT_EQ(n[4], "rad/s^0.5");

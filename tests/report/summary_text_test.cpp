@@ -40,13 +40,13 @@ models::NoiseModel example_model() {
   m.confidence = 0.95;
   models::AxisModel gyro;
   gyro.name = "gyro_y";
-  gyro.gyro = true;
+  gyro.kind = SensorKind::gyro;
   gyro.terms[NoiseTerm::white_noise] = {1e-4, 9e-5, 1.1e-4, true, "wnnls-oavar", ""};
   gyro.terms[NoiseTerm::random_walk] = {0.0, 0.0, 3e-7, false, "", ""};
   gyro.readoff.slope[NoiseTerm::white_noise] = 1.05e-4;
   models::AxisModel accel;
   accel.name = "accel_x";
-  accel.gyro = false;
+  accel.kind = SensorKind::accel;
   accel.terms[NoiseTerm::white_noise] = {2e-3, 1.9e-3, 2.1e-3, true, "wnnls-oavar", ""};
   accel.psd_check_pass = false;
   accel.psd_check_note = "model 5 dB below the PSD";
@@ -63,8 +63,8 @@ TEST(SummaryText, HeaderValuesInDatasheetUnitsAndFindings) {
             "intervals, '-' = not identified (upper bound);");
   EXPECT_EQ(lines[1],
             "ieee952 = the graphical slope read-off of the OADEV curve, for traceability");
-  const models::DatasheetUnit n = models::datasheet_unit(NoiseTerm::white_noise, true);
-  const models::DatasheetUnit k = models::datasheet_unit(NoiseTerm::random_walk, true);
+  const models::DatasheetUnit n = models::datasheet_unit(NoiseTerm::white_noise, SensorKind::gyro);
+  const models::DatasheetUnit k = models::datasheet_unit(NoiseTerm::random_walk, SensorKind::gyro);
   const std::size_t gyro = index_of(lines, "gyro");
   const std::size_t accel = index_of(lines, "accel");
   ASSERT_LT(gyro, accel);
@@ -80,13 +80,13 @@ TEST(SummaryText, HeaderValuesInDatasheetUnitsAndFindings) {
   ASSERT_LT(walk, accel);
   EXPECT_EQ(lines[walk + 1],
             "    gyro_y: - (< " + significant_number_text(3e-7 * k.factor, 2) + ")");
-  EXPECT_EQ(
-      lines[index_of(lines,
-                     "  quantization [" +
-                         std::string(models::datasheet_unit(NoiseTerm::quantization, true).ascii) +
-                         "]") +
-            1],
-      "    gyro_y: -");
+  EXPECT_EQ(lines[index_of(lines, "  quantization [" +
+                                      std::string(models::datasheet_unit(NoiseTerm::quantization,
+                                                                         SensorKind::gyro)
+                                                      .ascii) +
+                                      "]") +
+                  1],
+            "    gyro_y: -");
   // accel_x is listed under accel only.
   for (std::size_t i = gyro; i < accel; ++i) EXPECT_EQ(lines[i].find("accel_x"), std::string::npos);
   EXPECT_LT(index_of(lines, "PSD cross-check FAILED for accel_x: model 5 dB below the PSD"),
@@ -102,8 +102,10 @@ TEST(SummaryText, TrueValuesAreMarkedInsideOrOutsideTheInterval) {
   truth[1].white_noise = 1.05e-4;  // gyro_y: inside [9e-5, 1.1e-4]
   truth[3].white_noise = 3e-3;     // accel_x: outside [1.9e-3, 2.1e-3]
   const std::string text = summary_text(example_model(), truth);
-  const models::DatasheetUnit gyro = models::datasheet_unit(NoiseTerm::white_noise, true);
-  const models::DatasheetUnit accel = models::datasheet_unit(NoiseTerm::white_noise, false);
+  const models::DatasheetUnit gyro =
+      models::datasheet_unit(NoiseTerm::white_noise, SensorKind::gyro);
+  const models::DatasheetUnit accel =
+      models::datasheet_unit(NoiseTerm::white_noise, SensorKind::accel);
   EXPECT_NE(
       text.find("   true " + significant_number_text(1.05e-4 * gyro.factor, 4) + "  (inside)\n"),
       std::string::npos)

@@ -51,7 +51,7 @@ TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
   EXPECT_GE(n.ci_high, 1.16355e-4);
   const models::AxisModel* az = model.find_axis("accel_z");
   ASSERT_NE(az, nullptr);
-  EXPECT_FALSE(az->gyro);
+  EXPECT_EQ(az->kind, SensorKind::accel);
   EXPECT_NEAR(az->terms[1].value / 1.471e-3, 1.0, 0.05);  // the gravity constant is not noise
 
   const auto allan = read_csv_rows(out / "allan.csv");

@@ -136,7 +136,7 @@ TEST_F(ConvertCli, SimulateBinaryEqualsTheConvertedCsv) {
   ASSERT_EQ(conv.channels.size(), 6U);
   for (std::size_t c = 0; c < 6; ++c) {
     EXPECT_EQ(sim.channels[c].name, conv.channels[c].name);
-    EXPECT_EQ(sim.channels[c].unit, conv.channels[c].unit);
+    EXPECT_EQ(sim.channels[c].unit(), conv.channels[c].unit());
     EXPECT_EQ(sim.channels[c].source_column, conv.channels[c].source_column);
     EXPECT_EQ(sim.channels[c].source_unit, conv.channels[c].source_unit);
     expect_same_bits(sim.channels[c].values, conv.channels[c].values, sim.channels[c].name);

@@ -11,20 +11,24 @@
 #include <sstream>
 #include <string>
 
+#include "common/sensor_kind.h"
 #include "test_support.h"
 
 namespace imunoise::test {
 namespace {
 
 /// One model axis in the short form of docs/model-yaml.md.
-std::string axis(const std::string& name, bool gyro, double n, double b, double k) {
-  const std::string q = gyro ? "quantization_rad" : "quantization_m_per_s";
-  const std::string w = gyro ? "white_noise_rad_per_sqrt_s" : "white_noise_m_per_s_sqrt_s";
-  const std::string bi = gyro ? "bias_instability_rad_per_s" : "bias_instability_m_per_s2";
-  const std::string rw = gyro ? "random_walk_rad_per_s_sqrt_s" : "random_walk_m_per_s2_sqrt_s";
-  const std::string r = gyro ? "ramp_rad_per_s2" : "ramp_m_per_s3";
+std::string axis(const std::string& name, SensorKind kind, double n, double b, double k) {
+  const auto by_kind = [kind](const char* gyro_key, const char* accel_key) {
+    return std::string(kind == SensorKind::gyro ? gyro_key : accel_key);
+  };
+  const std::string q = by_kind("quantization_rad", "quantization_m_per_s");
+  const std::string w = by_kind("white_noise_rad_per_sqrt_s", "white_noise_m_per_s_sqrt_s");
+  const std::string bi = by_kind("bias_instability_rad_per_s", "bias_instability_m_per_s2");
+  const std::string rw = by_kind("random_walk_rad_per_s_sqrt_s", "random_walk_m_per_s2_sqrt_s");
+  const std::string r = by_kind("ramp_rad_per_s2", "ramp_m_per_s3");
   std::ostringstream s;
-  s << "  " << name << ":\n    sensor: " << (gyro ? "gyro" : "accel") << "\n"
+  s << "  " << name << ":\n    sensor: " << sensor_name(kind) << "\n"
     << "    " << q << ": {value: 0}\n    " << w << ": {value: " << n << "}\n"
     << "    " << bi << ": {value: " << b << "}\n    " << rw << ": {value: " << k << "}\n"
     << "    " << r << ": {value: 0}\n"
@@ -37,11 +41,11 @@ std::filesystem::path write_model(const std::filesystem::path& dir, bool six_axe
   std::string text =
       "format: imunoise-noise-model\nformat_version: 1\nsample_rate_hz: 200\naxes:\n";
   for (const char* n : {"gyro_x", "gyro_y", "gyro_z"}) {
-    text += axis(n, true, 1.16355e-4, 1.22173e-4, 6.80678e-6);
+    text += axis(n, SensorKind::gyro, 1.16355e-4, 1.22173e-4, 6.80678e-6);
     if (!six_axes) break;
   }
   for (const char* n : {"accel_x", "accel_y", "accel_z"}) {
-    text += axis(n, false, 1.471e-3, 4.9e-4, 1e-4);
+    text += axis(n, SensorKind::accel, 1.471e-3, 4.9e-4, 1e-4);
     if (!six_axes) break;
   }
   const auto path = dir / "model.yaml";

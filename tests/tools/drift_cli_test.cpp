@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/sensor_kind.h"
 #include "test_support.h"
 
 namespace imunoise::test {
@@ -25,10 +26,10 @@ std::string simulation_model(const std::string& extra = "") {
          "  z: {specific_force_m_per_s2: -9.80665}\n";
 }
 
-std::string fitted_axis(const std::string& name, bool gyro) {
+std::string fitted_axis(const std::string& name, SensorKind kind) {
   std::ostringstream s;
-  s << "  " << name << ":\n    sensor: " << (gyro ? "gyro" : "accel") << "\n";
-  if (gyro) {
+  s << "  " << name << ":\n    sensor: " << sensor_name(kind) << "\n";
+  if (kind == SensorKind::gyro) {
     s << "    quantization_rad: {value: 0}\n    white_noise_rad_per_sqrt_s: {value: 2.0e-5}\n"
          "    bias_instability_rad_per_s: {value: 0}\n    random_walk_rad_per_s_sqrt_s: {value: "
          "2.0e-7}\n    ramp_rad_per_s2: {value: 0}\n";
@@ -42,8 +43,10 @@ std::string fitted_axis(const std::string& name, bool gyro) {
 
 std::string fitted_model() {
   std::string text = "format: imunoise-noise-model\nformat_version: 1\nsample_rate_hz: 20\naxes:\n";
-  for (const char* a : {"x", "y", "z"}) text += fitted_axis(std::string("gyro_") + a, true);
-  for (const char* a : {"x", "y", "z"}) text += fitted_axis(std::string("accel_") + a, false);
+  for (const char* a : {"x", "y", "z"})
+    text += fitted_axis(std::string("gyro_") + a, SensorKind::gyro);
+  for (const char* a : {"x", "y", "z"})
+    text += fitted_axis(std::string("accel_") + a, SensorKind::accel);
   return text;
 }
 

@@ -137,8 +137,8 @@ bool run_scenario(const Scenario& scenario, const Settings& settings) {
                                      : imunoise::analysis::GaussMarkovMode::off;
       Outcome& out = outcomes[static_cast<std::size_t>(r)];
       try {
-        const auto result =
-            imunoise::pipeline::analyze_axis("gyro_x", true, rate, tau0, 0, options);
+        const auto result = imunoise::pipeline::analyze_axis("gyro_x", imunoise::SensorKind::gyro,
+                                                             rate, tau0, 0, options);
         out.terms = result.model.terms;
         out.slope = result.model.readoff.slope;
         out.gm = result.model.gauss_markov;
