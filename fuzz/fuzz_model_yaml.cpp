@@ -3,8 +3,10 @@
 // io::format_model_yaml and parsed again, writes the same text), the simulator's model file
 // (io::parse_simulation_model, then the channel models, models::ImuSimulator and one block, as
 // `imunoise simulate` runs it) and the input config (io::parse_input_config).
-// Only InputError / AnalysisError may escape (format_model_yaml's std::invalid_argument on an
-// accepted model is a finding: the loader let through what the writer refuses).
+// Only InputError / AnalysisError may escape: the readers throw InputError for any bad text
+// (io/noise_model_yaml_reader.cpp, io/simulation_model.cpp, io/input_config.cpp). Any exception
+// from format_model_yaml on an accepted model (it throws ContractViolation for a model breaking
+// a loading rule) is a finding: the loader let through what the writer refuses.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -17,6 +17,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/atomic_output.h"
+#include "io/yaml_scalar.h"
 
 namespace imunoise::io {
 
@@ -303,7 +304,12 @@ std::string format_discrete_model_yaml(const DiscreteModelFile& file) {
   const models::DiscreteStateModel& discrete = file.discrete;
   // The same content as the JSON, with a comment header for people.
   std::ostringstream y;
-  y << "# imunoise discrete state model from " << file.source_model << "\n";
+  // The path as given in the comment (people read it); on one line even when it holds a
+  // control character. The key below holds it as a quoted scalar that reads back unchanged.
+  y << "# imunoise discrete state model from "
+    << (has_control_character(file.source_model) ? yaml_double_quoted(file.source_model)
+                                                 : file.source_model)
+    << "\n";
   y << "# " << file.description << "\n";
   y << "# x_{k+1} = phi x_k + w_k, cov(w_k) = qd; continuous xdot = F x + G w, E[w w'] = Qc "
        "delta\n";
@@ -314,7 +320,7 @@ std::string format_discrete_model_yaml(const DiscreteModelFile& file) {
   for (const auto& n : file.notes) y << "# note: " << n << "\n";
   y << "# " << discrete.state_names.size() << " states\n";
   y << kFormatKey << ": " << kFormat << "\n" << kFormatVersionKey << ": " << kFormatVersion << "\n";
-  y << kSourceModelKey << ": \"" << file.source_model << "\"\n";
+  y << kSourceModelKey << ": " << yaml_double_quoted(file.source_model) << "\n";
   y << kDtKey << ": " << shortest_number_text(discrete.dt_s) << "\n";
   y << kStatesKey << ": " << names_yaml(discrete.state_names) << "\n";
   y << kNoisesKey << ": " << names_yaml(continuous.noise_names) << "\n";

@@ -36,7 +36,10 @@ struct DiscreteModelFile {
 /// @name Writing
 /// @{
 /// discrete_model.yaml: a comment header for people (source, description, method, values,
-/// notes, state count), then the keys of the JSON.
+/// notes, state count), then the keys of the JSON. source_model is a double-quoted scalar
+/// (io/yaml_scalar.h: quotes, backslashes and controls escaped), so any path reads back
+/// unchanged; the header shows it as is, or quoted the same way when it holds a control
+/// character (a comment is one line).
 std::string format_discrete_model_yaml(const DiscreteModelFile& file);
 /// discrete_model.json (nlohmann::json, indent 2, with a final newline).
 std::string format_discrete_model_json(const DiscreteModelFile& file);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "common/errors.h"
@@ -86,11 +87,8 @@ void append_imu_sample(const imunoise::imu_sample_t& m, pipeline::ImuSampleColum
     samples.values[a].push_back(gyro[a]);
     samples.values[3 + a].push_back(accel[a]);
   }
-  // Temperature is a channel only if every sample has one: stop at the first that lacks it.
-  const std::size_t before = samples.size() - 1;
-  if (m.has_temperature && samples.temperature_degc.size() == before) {
-    samples.temperature_degc.push_back(m.temperature_degc);
-  }
+  pipeline::append_sample_temperature(
+      samples, m.has_temperature ? std::optional<double>(m.temperature_degc) : std::nullopt);
 }
 
 imunoise::noise_model_t noise_model_message(const models::NoiseModel& model,

@@ -14,6 +14,7 @@
 #include "io/atomic_output.h"
 #include "io/noise_model_yaml.h"
 #include "io/noise_model_yaml_internal.h"
+#include "io/yaml_scalar.h"
 
 namespace imunoise::io {
 namespace {
@@ -31,36 +32,6 @@ std::string integer_text(std::int64_t value) {
   return std::string(buffer.data(), result.ptr);
 }
 
-/// TEXT as a YAML double-quoted scalar. Quote, backslash and the C0 controls are escaped
-/// (\n, \r, \t, \xHH) so the scalar stays on one line; every other byte, UTF-8 included, is
-/// copied as is (yaml-cpp reads them back unchanged).
-std::string double_quoted(std::string_view text) {
-  constexpr std::string_view kHex = "0123456789abcdef";
-  std::string out;
-  out.reserve(text.size() + 2);
-  out += '"';
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"') {
-      out += "\\\"";
-    } else if (c == '\\') {
-      out += "\\\\";
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (byte < 0x20 || byte == 0x7f) {
-      out.append("\\x").append(1, kHex[byte >> 4]).append(1, kHex[byte & 0xf]);
-    } else {
-      out += c;
-    }
-  }
-  out += '"';
-  return out;
-}
-
 /// An axis name as a mapping key: plain when it is a simple name (gyro_x), quoted otherwise.
 std::string key_text(std::string_view name) {
   const auto simple = [](char c) {
@@ -69,7 +40,7 @@ std::string key_text(std::string_view name) {
   bool plain = !name.empty() && !(name[0] >= '0' && name[0] <= '9');
   for (const char c : name) plain = plain && simple(c);
   plain = plain && name != "null" && name != "Null" && name != "NULL";  // YAML's null spellings
-  return plain ? std::string(name) : double_quoted(name);
+  return plain ? std::string(name) : yaml_double_quoted(name);
 }
 
 /// A one-line flow mapping "{key: value, …}" built in key order.
@@ -84,7 +55,7 @@ class FlowMap {
   }
   FlowMap& boolean(std::string_view key, bool value) { return raw(key, value ? "true" : "false"); }
   FlowMap& string(std::string_view key, std::string_view value) {
-    return raw(key, double_quoted(value));
+    return raw(key, yaml_double_quoted(value));
   }
   std::string text() const { return text_ + "}"; }
 
@@ -105,9 +76,9 @@ class Writer {
          "ci_high an upper bound.");
     entry(0, kFormatKey, kModelYamlFormat);
     entry(0, kVersionKey, std::to_string(kModelYamlVersion));
-    entry(0, kSoftware, double_quoted(model.software));
-    entry(0, kSensorName, double_quoted(model.sensor_name));
-    entry(0, kSource, double_quoted(model.source));
+    entry(0, kSoftware, yaml_double_quoted(model.software));
+    entry(0, kSensorName, yaml_double_quoted(model.sensor_name));
+    entry(0, kSource, yaml_double_quoted(model.source));
     entry(0, kSampleRate, shortest_number_text(model.sample_rate_hz));
     entry(0, kDuration, shortest_number_text(model.duration_s));
     entry(0, kSamples, integer_text(model.samples));
@@ -115,7 +86,7 @@ class Writer {
           shortest_number_text(model.confidence) + "  # level of every [ci_low, ci_high]");
     std::vector<std::string> findings;
     for (const std::string& finding : model.data_quality)
-      findings.push_back(double_quoted(finding));
+      findings.push_back(yaml_double_quoted(finding));
     list(0, kDataQuality, findings, "");
     line(0, std::string(kAxes) + ":");
     for (const AxisModel& axis : model.axes) write_axis(axis);

@@ -17,6 +17,7 @@
 #include "common/sampling_gap.h"
 #include "common/sensor_kind.h"
 #include "common/units.h"
+#include "io/atomic_output.h"
 
 namespace imunoise::io {
 
@@ -391,6 +392,11 @@ SamplingReportFile report_of(const Json& j, std::string_view where) {
 pipeline::SamplingReport sampling_report_from_json(const nlohmann::ordered_json& j,
                                                    std::string_view where) {
   return report_of(j, where).report;
+}
+
+void write_sampling_report_json(const std::string& path, const pipeline::SamplingReport& report,
+                                std::string_view source_path) {
+  write_file_atomically(path, sampling_report_to_json(report, source_path).dump(2) + "\n");
 }
 
 SamplingReportFile read_sampling_report_json(const std::string& path) {

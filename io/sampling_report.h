@@ -1,7 +1,7 @@
 /// @file
 /// @brief The sampling report of a recording as text and as sampling_report.json, for
 /// `imunoise check`, `analyze` and the report (the checks themselves: pipeline/sampling_checks.h):
-/// the JSON writer and its strict reader, over the one typed pipeline::SamplingReport.
+/// the JSON, the file's writer and its strict reader, over the one typed pipeline::SamplingReport.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -40,6 +40,13 @@ struct SamplingReportFile {
   pipeline::SamplingReport report;
   std::string source_path;  ///< the `file` key: the recording as the command line named it
 };
+
+/// Writes sampling_report.json at PATH: sampling_report_to_json(REPORT, SOURCE_PATH) with indent 2
+/// and a final newline, atomically (AtomicOutputFile: PATH keeps its old content on failure).
+/// read_sampling_report_json reads it back to the same report, doubles bit for bit.
+/// @throws InputError naming PATH when it cannot be written.
+void write_sampling_report_json(const std::string& path, const pipeline::SamplingReport& report,
+                                std::string_view source_path);
 
 /// Reads sampling_report.json at PATH (`imunoise analyze -o DIR`, `imunoise check --json`).
 /// @throws InputError "PATH: cannot open for reading", "PATH: not valid JSON (…)", or a message

@@ -29,6 +29,14 @@ void ImuSampleColumns::clear() {
   rows_dropped = 0;
 }
 
+void append_sample_temperature(ImuSampleColumns& samples, std::optional<double> temperature_degc) {
+  IMUNOISE_EXPECT(samples.size() > 0, "append_sample_temperature: append the sample's stamp first");
+  // Every sample so far had one exactly when the column is one shorter than the stamps.
+  if (temperature_degc && samples.temperature_degc.size() == samples.size() - 1) {
+    samples.temperature_degc.push_back(*temperature_degc);
+  }
+}
+
 Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string& source_path,
                                      const std::string& channel) {
   const std::size_t n = samples.size();

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,17 @@ struct ImuSampleColumns {
   std::size_t size() const { return utime_us.size(); }
   void clear();
 };
+
+/// Adds the temperature of the sample last appended to SAMPLES (its stamp is in: size() counts
+/// it) by the one rule for the temperature channel of message samples: temperature is a channel
+/// only if every sample carries one, so the column grows while every sample so far had one and
+/// stops at the first without (it then stays shorter than the others and
+/// recording_from_imu_samples leaves it out). Used by io::append_imu_sample (LCM logs) and
+/// LiveWindow::snapshot (live), so both give the same channels.
+/// @param[in,out] samples          the columns, with the sample's stamp already appended
+/// @param[in]     temperature_degc the sample's temperature [°C], or none when it carried none
+/// @throws ContractViolation when SAMPLES holds no sample.
+void append_sample_temperature(ImuSampleColumns& samples, std::optional<double> temperature_degc);
 
 /// The Recording of `samples`: time_s from utime relative to the first sample, sample period =
 /// the median interval, increments divided by it (as the CSV reader does), channels gyro_x …

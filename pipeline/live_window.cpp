@@ -119,10 +119,7 @@ ImuSampleColumns LiveWindow::snapshot() {
   for (const ImuSample& s : window_) {
     columns.utime_us.push_back(s.utime_us);
     for (std::size_t c = 0; c < 6; ++c) columns.values[c].push_back(s.values[c]);
-    // Temperature is a channel only if every sample has one: stop at the first that lacks it.
-    if (s.temperature_degc && columns.temperature_degc.size() == columns.size() - 1) {
-      columns.temperature_degc.push_back(*s.temperature_degc);
-    }
+    append_sample_temperature(columns, s.temperature_degc);
   }
   new_samples_ = 0;
   analysed_until_us_ = last_utime();

@@ -18,7 +18,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -114,9 +113,8 @@ void run_analyze(const AnalyzeArgs& args, io::StageTimes& times) {
   io::write_model_yaml(model, (dir / "model.yaml").string());
   io::write_allan_csv((dir / "allan.csv").string(), io::allan_table(axes, tau0_s));
   io::write_psd_csv((dir / "psd.csv").string(), io::psd_table(axes, tau0_s));
-  io::write_file_atomically(
-      (dir / "sampling_report.json").string(),
-      io::sampling_report_to_json(recording.report, args.file).dump(2) + "\n");
+  io::write_sampling_report_json((dir / "sampling_report.json").string(), recording.report,
+                                 args.file);
   write_command_file(dir.string());
   times.mark("outputs");
   const report::ReportOutput report = report::write_report(dir.string());

@@ -183,6 +183,49 @@ TEST(DiscreteModelFile, WrittenFilesLoadBackAndAgree) {
   expect_same_content(yaml, json);
 }
 
+TEST(DiscreteModelFile, SourceModelPathOfAnyCharactersReadsBack) {
+  // Paths that break a YAML scalar written as is: a colon followed by a space, '#', quotes,
+  // backslashes (a Windows path, and an escape sequence inside double quotes), leading and
+  // trailing spaces, YAML indicators, "null", controls, UTF-8, and nothing at all.
+  const std::vector<std::string> paths{
+      "C:\\models\\imu: \"best\" #1.yaml",
+      " leading space.yaml",
+      "trailing space.yaml ",
+      "runs/a: b # c/model.yaml",
+      "it's 'quoted'.yaml",
+      "- [dash]: {flow}, &anchor *alias !tag %directive @at `tick` |pipe >fold",
+      "null",
+      "line\nbreak\tand\r\x01\x7f controls.yaml",
+      "ünïcode/模型.yaml",
+      "",
+  };
+  const auto dir = test::make_temp_dir("discrete_model_file_paths");
+  for (const std::string& path : paths) {
+    SCOPED_TRACE(path);
+    DiscreteModelFile f = real_file();
+    f.source_model = path;
+    const std::string text = format_discrete_model_yaml(f);
+    const DiscreteModelFile back = parse_discrete_model_yaml(text, "d.yaml");
+    expect_same_content(f, back);
+    EXPECT_EQ(format_discrete_model_yaml(with_unread_parts(back, f)), text);
+    // The header comment stays one line: the next line is the description's comment.
+    const std::size_t first_end = text.find('\n');
+    ASSERT_NE(first_end, std::string::npos);
+    EXPECT_EQ(text.compare(first_end + 1, 2 + f.description.size(), "# " + f.description), 0);
+    expect_same_content(f, parse_discrete_model_json(format_discrete_model_json(f), "d.json"));
+    const std::string base = write_discrete_model(f, (dir / "out").string());
+    expect_same_content(f, load_discrete_model(base + ".yaml"));
+  }
+}
+
+TEST(DiscreteModelFile, OrdinarySourceModelPathIsWrittenAsIs) {
+  DiscreteModelFile f = real_file();
+  f.source_model = "out/demo/model.yaml";
+  const std::string text = format_discrete_model_yaml(f);
+  EXPECT_EQ(text.rfind("# imunoise discrete state model from out/demo/model.yaml\n", 0), 0u);
+  EXPECT_THAT(text, HasSubstr("\nsource_model: \"out/demo/model.yaml\"\n"));
+}
+
 TEST(DiscreteModelFile, ZeroStatesRoundTrip) {
   DiscreteModelFile f;
   f.source_model = "m.yaml";

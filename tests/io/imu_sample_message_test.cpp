@@ -60,6 +60,23 @@ TEST(ImuSampleMessage, WindowSnapshotEqualsTheLogReadersColumns) {
   }
 }
 
+TEST(ImuSampleMessage, WindowAndLogReaderStopTheTemperatureAtTheSameSample) {
+  // One rule (pipeline::append_sample_temperature) for both: message 7 carries none, so the
+  // temperature column stops there on both paths though later messages carry one again.
+  pipeline::LiveWindow window({3600.0, 1000, 1.0}, imu_sample_fields());
+  pipeline::ImuSampleColumns reference;
+  for (std::int64_t k = 0; k < 20; ++k) {
+    const imunoise::imu_sample_t m = message(k, false, k != 7);
+    const test::LcmBytes bytes = test::lcm_encode(m);
+    const std::optional<pipeline::ImuSample> s = decode_imu_sample(bytes.data(), bytes.size());
+    ASSERT_TRUE(s.has_value());
+    window.add(*s);
+    append_imu_sample(m, reference);
+  }
+  EXPECT_EQ(reference.temperature_degc.size(), 7u);
+  expect_same_columns(window.snapshot(), reference);
+}
+
 TEST(ImuSampleMessage, KeepsTheUsedFieldsOnly) {
   const pipeline::ImuSample rates = imu_sample_of(message(3, false, false));
   EXPECT_FALSE(rates.increments);

@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -121,8 +120,8 @@ fs::path analysis_directory(const std::string& tag) {
   write_model_yaml(example_model(), (dir / "model.yaml").string());
   write_allan_csv((dir / "allan.csv").string(), example_allan());
   write_psd_csv((dir / "psd.csv").string(), example_psd());
-  write_file_atomically((dir / "sampling_report.json").string(),
-                        sampling_report_to_json(example_sampling(), "rec.csv").dump(2) + "\n");
+  write_sampling_report_json((dir / "sampling_report.json").string(), example_sampling(),
+                             "rec.csv");
   write_command_file(dir.string(), {"/home/me", {"analyze", "rec.csv", "-o", "out"}});
   create_output_directory((dir / "drift").string());
   write_drift_summary_json((dir / "drift" / "drift_summary.json").string(),

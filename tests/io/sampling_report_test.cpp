@@ -1,6 +1,6 @@
 // Tests of io/sampling_report.h: the text and JSON of a sampling report whose gaps, duplicates
-// and quantization step are known by construction, the JSON read back, and the durations it
-// prints (common/number_text.h duration_text).
+// and quantization step are known by construction, the JSON and the file read back, and the
+// durations it prints (common/number_text.h duration_text).
 #include "io/sampling_report.h"
 
 #include <gmock/gmock.h>
@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -270,6 +271,23 @@ TEST(SamplingReportJson, ReadsTheFileBackWithItsSource) {
   const SamplingReportFile file = read_sampling_report_json(path.string());
   EXPECT_EQ(file.source_path, "data/rec 1.csv");
   expect_same_report(report, file.report);
+}
+
+TEST(SamplingReportJson, WrittenFileReadsBackToTheSameReport) {
+  const SamplingReport report = full_report();
+  const auto dir = test::make_temp_dir("sampling_report_write");
+  const auto path = dir / "sampling_report.json";
+  write_sampling_report_json(path.string(), report, "data/rec 1.csv");
+  const SamplingReportFile file = read_sampling_report_json(path.string());
+  EXPECT_EQ(file.source_path, "data/rec 1.csv");
+  expect_same_report(report, file.report);
+  // The bytes `imunoise analyze` writes: the JSON with indent 2 and a final newline; no
+  // temporary file is left beside it.
+  EXPECT_EQ(test::read_file_bytes(path),
+            sampling_report_to_json(report, "data/rec 1.csv").dump(2) + "\n");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
+                          std::filesystem::directory_iterator()),
+            1);
 }
 
 TEST(SamplingReportJson, FixedRateReportRoundTrips) {
