@@ -42,7 +42,7 @@ FittedRecord white_rw_record() {
   simulator.next_block(rate);
   AxisAnalysisOptions options;
   options.bootstrap_replicates = 0;
-  r.analysis = analyze_axis("gyro_x", true, rate, r.tau0_s, 0, options);
+  r.analysis = analyze_axis("gyro_x", SensorKind::gyro, rate, r.tau0_s, 0, options);
   r.points = analysis::fit_points(r.analysis.oadev);
   for (const auto& p : r.analysis.oadev.points) r.m.push_back(p.m);
   r.fit_options = options.fit;
