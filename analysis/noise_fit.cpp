@@ -335,7 +335,7 @@ double residual_in_halfwidths(const FitPoint& p, double model_variance) {
 /// Assembles the FitResult of the final column set.
 FitResult make_result(std::span<const FitPoint> points, const Data& data,
                       const std::vector<Column>& columns, const Solution& s, bool hadamard,
-                      double effective_points, std::string note) {
+                      double effective_points, std::string note, bool residuals = true) {
   FitResult r;
   r.hadamard = hadamard;
   r.used = data.index;
@@ -373,6 +373,9 @@ FitResult make_result(std::span<const FitPoint> points, const Data& data,
   }
   std::sort(r.coefficients.gauss_markov.begin(), r.coefficients.gauss_markov.end(),
             [](const GaussMarkov& a, const GaussMarkov& b) { return a.tau_c_s < b.tau_c_s; });
+  // Each residual inverts two χ² quantiles (costly at the ν ~ 10⁵ of short τ): the bootstrap's
+  // refits, which never read them, skip them.
+  if (!residuals) return r;
   r.residual_halfwidths.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
     const double model = model_variance(r.coefficients, points[k].tau_s, hadamard);
@@ -598,7 +601,8 @@ FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& s
   refine_gauss_markov(data, columns, hadamard, options.weight_iterations,
                       brackets_around(columns, kRefitBracket));
   const Solution s = solve(data, columns, hadamard, options.weight_iterations, zero_offset(data));
-  return make_result(points, data, columns, s, hadamard, effective_point_count(data), "");
+  return make_result(points, data, columns, s, hadamard, effective_point_count(data), "",
+                     /*residuals=*/false);
 }
 
 std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> points,

@@ -138,6 +138,7 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
 /// the structure's value) and the sinusoid frequencies — with no model selection and no τ-range
 /// choice. The estimator the parametric bootstrap re-runs on each simulated replicate.
 /// Only weight_iterations is read from OPTIONS; the basis (AVAR/HVAR) is STRUCTURE's.
+/// The result has no residual_halfwidths (empty): the refits of a bootstrap never read them.
 /// @throws AnalysisError when a used point is unusable or the structure has no term;
 ///   ContractViolation when a used index is out of range or fewer than 2 points are used.
 FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,

@@ -273,7 +273,10 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
                        " gap-free pieces (PSD: " + std::to_string(psd_pieces) +
                        " long enough for a Welch segment)";
     if (options.bootstrap_replicates >= 2) {
-      note += "; the bootstrap simulates one record of the total length, an approximation";
+      note += options.interval_source == ReplicateSource::simulated_record
+                  ? "; the bootstrap simulates one record of the total length, an approximation"
+                  : "; the interval draws model one record of the total length, an "
+                    "approximation";
     }
     model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") + note;
   }
@@ -283,6 +286,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   if (options.bootstrap_replicates >= 2) {
     BootstrapOptions boot;
     boot.replicates = options.bootstrap_replicates;
+    boot.source = options.interval_source;
     boot.seed = options.seed * 1000003ULL + static_cast<std::uint64_t>(axis_index);
     boot.confidence = options.confidence;
     boot.threads = options.threads;
@@ -296,8 +300,12 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     intervals = result.terms;
     gm_sigma = result.gauss_markov_sigma;
     gm_tau = result.gauss_markov_tau_c;
-    interval_method = "parametric bootstrap, " + std::to_string(result.replicates) +
-                      " replicates, bias-corrected normal interval of the log";
+    interval_method =
+        (options.interval_source == ReplicateSource::simulated_record
+             ? "parametric bootstrap, "
+             : "parametric bootstrap of the OAVAR vector (model covariance across tau), ") +
+        std::to_string(result.replicates) +
+        " replicates, bias-corrected normal interval of the log";
   } else {
     intervals = analysis::least_squares_intervals(points, out.fit, options.confidence);
     interval_method = "weighted least squares covariance (ignores inter-tau correlation)";

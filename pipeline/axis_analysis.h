@@ -19,6 +19,7 @@
 #include "analysis/tau_grid.h"
 #include "common/progress_callback.h"
 #include "models/noise_model.h"
+#include "pipeline/bootstrap.h"
 
 namespace imunoise::pipeline {
 
@@ -30,9 +31,11 @@ struct AxisAnalysisOptions {
   bool auto_low_pass = true;     ///< drop leading τ bent below the white line (§4.3)
   analysis::WelchOptions welch;  ///< PSD settings
   int psd_bins_per_decade = 10;
-  int bootstrap_replicates = 50;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
-  std::uint64_t seed = 1;         ///< bootstrap master seed (axis index is mixed in)
-  unsigned threads = 1;           ///< threads for this axis (deviation τ and bootstrap)
+  int bootstrap_replicates = 200;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
+  /// Where the replicates' variances come from (pipeline/bootstrap.h).
+  ReplicateSource interval_source = ReplicateSource::variance_distribution;
+  std::uint64_t seed = 1;  ///< bootstrap master seed (axis index is mixed in)
+  unsigned threads = 1;    ///< threads for this axis (deviation τ and bootstrap)
   /// How the fit note names the way to ask for the bootstrap ("Gauss-Markov intervals need the
   /// bootstrap (…)"); the CLI passes its flag, "--bootstrap N".
   std::string bootstrap_setting = "bootstrap_replicates >= 2";

@@ -31,14 +31,21 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
     throw InputError("--confidence: expected a level in (0, 1), got " +
                      shortest_number_text(s.confidence));
   }
-  if (s.bootstrap == 1 || s.bootstrap < 0) {
-    throw InputError("--bootstrap: expected 0 (off) or at least 2 replicates");
+  if (s.bootstrap && (*s.bootstrap == 1 || *s.bootstrap < 0)) {
+    throw InputError("--bootstrap: expected 0 (least-squares intervals) or at least 2 replicates");
+  }
+  if (s.interval_draws == 1 || s.interval_draws < 0) {
+    throw InputError("--interval-draws: expected 0 (least-squares intervals) or at least 2");
   }
   pipeline::AxisAnalysisOptions options;
   options.confidence = s.confidence;
   options.grid = analysis::parse_tau_grid(s.taus);
-  options.bootstrap_replicates = s.bootstrap;
-  options.bootstrap_setting = "--bootstrap N";
+  // Intervals: by default the fitted model's OAVAR vectors drawn from their distribution
+  // (cost independent of the record); --bootstrap N simulates whole records instead.
+  options.interval_source = s.bootstrap ? pipeline::ReplicateSource::simulated_record
+                                        : pipeline::ReplicateSource::variance_distribution;
+  options.bootstrap_replicates = s.bootstrap ? *s.bootstrap : s.interval_draws;
+  options.bootstrap_setting = "--bootstrap N or --interval-draws N";
   options.seed = s.seed;
   options.fit.gauss_markov =
       s.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
@@ -63,11 +70,18 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
   cmd.add_option("--taus", s.taus, "tau grid: octave, decade, log:N (default log:10)")
       ->group(group);
   cmd.add_option("--confidence", s.confidence, "interval level (default 0.95)")->group(group);
-  cmd.add_option("--bootstrap", s.bootstrap,
-                 "parametric bootstrap replicates per axis (default 50; 0 = least-squares "
-                 "intervals, which ignore the correlation between tau points)")
+  cmd.add_option("--interval-draws", s.interval_draws,
+                 "intervals from this many OAVAR vectors per axis drawn from their distribution "
+                 "under the fitted model (its covariance across tau; default 200; 0 = "
+                 "least-squares intervals, which ignore the correlation between tau points)")
       ->group(group);
-  cmd.add_option("--seed", s.seed, "bootstrap seed (default 1)")->group(group);
+  cmd.add_option("--bootstrap", s.bootstrap,
+                 "instead: the parametric bootstrap of N simulated records per axis (N >= 2; "
+                 "costs N analyses of the record; for validation), or 0 = least-squares "
+                 "intervals")
+      ->group(group);
+  cmd.add_option("--seed", s.seed, "seed of the interval draws or the bootstrap (default 1)")
+      ->group(group);
   cmd.add_option("--threads", s.threads, "worker threads (0 = all cores)")->group(group);
   cmd.add_flag("--gauss-markov", s.gauss_markov,
                "also fit first-order Gauss-Markov terms (grid of correlation times, refined)")

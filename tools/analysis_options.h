@@ -24,7 +24,11 @@ namespace imunoise::tools {
 struct AnalysisSettings {
   std::string taus = "log:10";
   double confidence = 0.95;
-  int bootstrap = 50;
+  /// `--bootstrap N`: the reference bootstrap of simulated records (N ≥ 2) or least-squares
+  /// intervals (0); unset: the interval draws below.
+  std::optional<int> bootstrap;
+  int interval_draws =
+      200;  ///< `--interval-draws N`: OAVAR vectors drawn per axis (0: least squares)
   std::uint64_t seed = 1;
   unsigned threads = 0;
   bool gauss_markov = false;

@@ -99,8 +99,10 @@ void run_analyze(const AnalyzeArgs& args, io::StageTimes& times) {
   bar.finish();  // before anything else is written: the next output starts on a clean line
   times.mark("analysis");
   print_detail(args.verbosity, "analyze",
-               std::to_string(result.axes.size()) + " channels, bootstrap " +
-                   std::to_string(args.analysis.bootstrap) +
+               std::to_string(result.axes.size()) + " channels, " +
+                   (args.analysis.bootstrap
+                        ? "bootstrap " + std::to_string(*args.analysis.bootstrap)
+                        : "interval draws " + std::to_string(args.analysis.interval_draws)) +
                    " replicates; per stage, summed over the channels: " + channel_times.text());
   if (args.verbosity.verbose)
     print_detail(args.verbosity, "analyze", pipeline::psd_plan_text(result));
