@@ -255,7 +255,7 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
                                        "cannot estimate the sample rate: the time stamps never "
                                        "increase"));
     }
-    rec.sample_period_s = timing.median_interval_s;
+    rec.sample_period_s = timing.sample_period_s;
   } else {
     rec.sample_period_s = 1.0 / *config.rate_hz;
     timing = pipeline::fixed_rate_timing(*config.rate_hz, static_cast<std::int64_t>(n));

@@ -75,9 +75,16 @@ std::string format_sampling_report(const pipeline::SamplingReport& report,
     out += printf_string("rate:       %.6g Hz (given; no time stamps to check)\n", t.rate_hz);
     out += "duration:   " + duration_text(t.duration_s) + "\n";
   } else {
-    out += printf_string("rate:       %.6g Hz from the median interval ", t.rate_hz) +
-           duration_text(t.median_interval_s) +
-           printf_string(" (mean rate %.6g Hz)\n", t.mean_rate_hz);
+    if (t.period_from_mean) {
+      out +=
+          printf_string("rate:       %.6g Hz from the mean regular interval ", t.rate_hz) +
+          duration_text(t.mean_interval_s) + " (median " + duration_text(t.median_interval_s) +
+          printf_string("; quantized or alternating stamps; mean rate %.6g Hz)\n", t.mean_rate_hz);
+    } else {
+      out += printf_string("rate:       %.6g Hz from the median interval ", t.rate_hz) +
+             duration_text(t.median_interval_s) +
+             printf_string(" (mean rate %.6g Hz)\n", t.mean_rate_hz);
+    }
     out += "duration:   " + duration_text(t.duration_s) + "\n";
     out += printf_string("gaps:       %" PRId64, t.gap_count);
     if (t.gap_count > 0) {
@@ -134,6 +141,9 @@ nlohmann::ordered_json sampling_report_to_json(const pipeline::SamplingReport& r
   j["has_timestamps"] = t.has_timestamps;
   j["rate_hz"] = t.rate_hz;
   j["median_interval_s"] = t.median_interval_s;
+  j["mean_interval_s"] = t.mean_interval_s;
+  j["sample_period_s"] = t.sample_period_s;
+  j["period_from_mean"] = t.period_from_mean;
   j["mean_rate_hz"] = t.mean_rate_hz;
   j["duration_s"] = t.duration_s;
   j["gap_count"] = t.gap_count;
@@ -352,6 +362,15 @@ SamplingReportFile report_of(const Json& j, std::string_view where) {
   t.has_timestamps = boolean_at(j, top, "has_timestamps");
   t.rate_hz = real_at(j, top, "rate_hz");
   t.median_interval_s = real_at(j, top, "median_interval_s");
+  // Written since the sample period may be the mean interval; older files: the median.
+  if (j.contains("sample_period_s")) {
+    t.mean_interval_s = real_at(j, top, "mean_interval_s");
+    t.sample_period_s = real_at(j, top, "sample_period_s");
+    t.period_from_mean = boolean_at(j, top, "period_from_mean");
+  } else {
+    t.mean_interval_s = t.median_interval_s;
+    t.sample_period_s = t.median_interval_s;
+  }
   t.mean_rate_hz = real_at(j, top, "mean_rate_hz");
   t.duration_s = real_at(j, top, "duration_s");
   t.gap_count = integer_at(j, top, "gap_count");

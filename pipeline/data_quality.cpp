@@ -18,6 +18,14 @@ std::vector<std::string> quality_findings(const SamplingReport& report) {
   if (t.duplicate_count > 0) {
     out.push_back(std::to_string(t.duplicate_count) + " duplicate time stamp(s)");
   }
+  if (t.period_from_mean) {
+    out.push_back("time stamps quantized or alternating: median interval " +
+                  significant_number_text(t.median_interval_s, 6) + " s, mean regular interval " +
+                  significant_number_text(t.mean_interval_s, 6) + " s (" +
+                  significant_number_text(
+                      100.0 * (t.mean_interval_s - t.median_interval_s) / t.median_interval_s, 3) +
+                  " %); the analysis uses the mean as the sample period");
+  }
   if (t.has_timestamps && t.median_interval_s > 0.0 &&
       t.jitter_rms_s > 0.01 * t.median_interval_s) {
     out.push_back("time-stamp jitter " + significant_number_text(t.jitter_rms_s) + " s RMS (" +

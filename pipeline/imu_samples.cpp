@@ -57,7 +57,7 @@ Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string
                                      "channel '" +
                                          channel + "' never increase"));
   }
-  rec.sample_period_s = timing.median_interval_s;
+  rec.sample_period_s = timing.sample_period_s;
 
   const auto add_channel = [&](std::string name, std::optional<SensorKind> kind,
                                std::string source_unit, const std::string& field,

@@ -48,9 +48,18 @@ struct IntervalHistogram {
 
 /// Time-stamp checks. All intervals are t[i+1] − t[i].
 struct TimingReport {
-  bool has_timestamps = false;       ///< false: a fixed rate was given
-  double rate_hz = 0.0;              ///< 1 / median interval (or the given rate); 0 if unknown
-  double median_interval_s = 0.0;    ///< median of all intervals (of the positive ones if ≤ 0)
+  bool has_timestamps = false;     ///< false: a fixed rate was given
+  double rate_hz = 0.0;            ///< 1 / sample_period_s (or the given rate); 0 if unknown
+  double median_interval_s = 0.0;  ///< median of all intervals (of the positive ones if ≤ 0)
+  /// Mean of the regular intervals (0 < interval ≤ gap_factor × median) [s]; 0 if none.
+  double mean_interval_s = 0.0;
+  /// The sample period of the analysis [s]: the median interval, or the mean regular interval
+  /// when the two differ by more than kPeriodFromMeanThreshold of the median — stamps that
+  /// alternate or are quantized coarser than the jitter (e.g. 0.10, 0.11, 0.10, … s) put the
+  /// median on one of the quantized values, while the mean regular interval stays the true
+  /// period (theory.md §1.1: τ0 is the sample period).
+  double sample_period_s = 0.0;
+  bool period_from_mean = false;     ///< sample_period_s is mean_interval_s
   double duration_s = 0.0;           ///< last − first time stamp
   double mean_rate_hz = 0.0;         ///< (n − 1) / duration
   std::int64_t gap_count = 0;        ///< intervals > gap_factor × median
@@ -66,6 +75,11 @@ struct TimingReport {
   IntervalHistogram interval_histogram;  ///< of the same intervals
   std::vector<GapRecord> gaps;           ///< the first kMaxListedGaps gaps, in time order
 };
+
+/// |mean − median| / median of the regular intervals above which TimingReport::sample_period_s
+/// is the mean (0.1 %: symmetric jitter moves the mean from the median by ~jitter/√n, far
+/// below; a τ axis 0.1 % off is already at the level of a fitted N's interval).
+inline constexpr double kPeriodFromMeanThreshold = 1e-3;
 
 /// How many gaps a TimingReport lists one by one (gap_count counts them all).
 inline constexpr std::size_t kMaxListedGaps = 10000;

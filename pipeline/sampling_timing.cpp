@@ -40,6 +40,7 @@ constexpr std::size_t kSampledMedianMin = std::size_t{1} << 16;
 /// largest d.
 struct JitterSums {
   double sum_sq[kLanes] = {};
+  double sum_dev[kLanes] = {};  ///< Σ (interval − median), for the mean regular interval
   double lo = kInf, hi = -kInf;
 };
 
@@ -130,9 +131,10 @@ template <class D>
 [[gnu::always_inline]] inline std::size_t regular_blocks_of(const double* t, std::size_t i,
                                                             std::size_t m, double median,
                                                             double gap_limit, JitterSums& sums) {
-  D sum[kGroups<D>], lo[2] = {(D{} + sums.lo), (D{} + sums.lo)},
-                     hi[2] = {(D{} + sums.hi), (D{} + sums.hi)};
+  D sum[kGroups<D>], sum_dev[kGroups<D>], lo[2] = {(D{} + sums.lo), (D{} + sums.lo)},
+                                          hi[2] = {(D{} + sums.hi), (D{} + sums.hi)};
   std::memcpy(sum, sums.sum_sq, sizeof sum);
+  std::memcpy(sum_dev, sums.sum_dev, sizeof sum_dev);
   for (; i + kBlock <= m; i += kBlock) {
     MaskOf<D> regular = ~MaskOf<D>{};
     for (std::size_t j = i; j < i + kBlock; j += kWidth<D>) {
@@ -146,12 +148,14 @@ template <class D>
         const D d = load<D>(p + 1) - load<D>(p);
         const D dev = d - median;
         sum[g] += dev * dev;
+        sum_dev[g] += dev;
         lo[g % 2] = d < lo[g % 2] ? d : lo[g % 2];
         hi[g % 2] = hi[g % 2] < d ? d : hi[g % 2];
       }
     }
   }
   std::memcpy(sums.sum_sq, sum, sizeof sum);
+  std::memcpy(sums.sum_dev, sum_dev, sizeof sum_dev);
   for (std::size_t j = 0; j < 2 * kWidth<D>; ++j) {
     sums.lo = std::min(sums.lo, lo[j / kWidth<D>][j % kWidth<D>]);
     sums.hi = std::max(sums.hi, hi[j / kWidth<D>][j % kWidth<D>]);
@@ -416,6 +420,7 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
     } else {
       const double dev = d - median;
       sums.sum_sq[i % kLanes] += dev * dev;
+      sums.sum_dev[i % kLanes] += dev;
       t.jitter_max_s = std::max(t.jitter_max_s, std::fabs(dev));
       ++jitter_count;
     }
@@ -433,6 +438,17 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
     t.jitter_max_s =
         std::max({t.jitter_max_s, std::fabs(sums.lo - median), std::fabs(sums.hi - median)});
   }
+  t.sample_period_s = median;
+  if (jitter_count > 0 && median > 0.0) {
+    t.mean_interval_s = median + lane_sum(sums.sum_dev) / static_cast<double>(jitter_count);
+    // Finite and positive for any stamps: the regular intervals lie in (0, gap_factor·median].
+    if (std::isfinite(t.mean_interval_s) && t.mean_interval_s > 0.0 &&
+        std::fabs(t.mean_interval_s - median) > kPeriodFromMeanThreshold * median) {
+      t.sample_period_s = t.mean_interval_s;
+      t.period_from_mean = true;
+      t.rate_hz = 1.0 / t.sample_period_s;
+    }
+  }
   if (jitter_count > 0) {
     t.jitter_rms_s = std::sqrt(lane_sum(sums.sum_sq) / static_cast<double>(jitter_count));
     t.interval_histogram = interval_histogram(time_s, median, gap_limit, std::min(sums.lo, lo),
@@ -447,6 +463,8 @@ TimingReport fixed_rate_timing(double rate_hz, std::int64_t samples) {
   t.rate_hz = rate_hz;
   t.mean_rate_hz = rate_hz;
   t.median_interval_s = rate_hz > 0.0 ? 1.0 / rate_hz : 0.0;
+  t.sample_period_s = t.median_interval_s;
+  t.mean_interval_s = t.median_interval_s;
   t.duration_s = samples > 1 ? static_cast<double>(samples - 1) * t.median_interval_s : 0.0;
   return t;
 }

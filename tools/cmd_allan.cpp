@@ -104,8 +104,11 @@ void run_allan(const AllanArgs& args, io::StageTimes& times) {
           args.file, 0, 0,
           "time column '" + series.time_column + "' has no positive interval; give --tau0"));
     }
-    tau0_s = timing.median_interval_s;
-    tau0_source = "median interval of time column '" + series.time_column + "'";
+    tau0_s = timing.sample_period_s;
+    tau0_source = std::string(timing.period_from_mean ? "mean regular interval (quantized or "
+                                                        "alternating stamps)"
+                                                      : "median interval") +
+                  " of time column '" + series.time_column + "'";
     // The estimators assume uniform sampling: say so when the stamps disagree.
     if (timing.gap_count > 0 || timing.non_monotonic_count > 0 || timing.duplicate_count > 0) {
       std::cerr << fmt::format(

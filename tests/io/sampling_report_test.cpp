@@ -169,6 +169,9 @@ void expect_same_report(const SamplingReport& a, const SamplingReport& b) {
   EXPECT_EQ(t.has_timestamps, u.has_timestamps);
   EXPECT_TRUE(same_bits(t.rate_hz, u.rate_hz));
   EXPECT_TRUE(same_bits(t.median_interval_s, u.median_interval_s));
+  EXPECT_TRUE(same_bits(t.mean_interval_s, u.mean_interval_s));
+  EXPECT_TRUE(same_bits(t.sample_period_s, u.sample_period_s));
+  EXPECT_EQ(t.period_from_mean, u.period_from_mean);
   EXPECT_TRUE(same_bits(t.duration_s, u.duration_s));
   EXPECT_TRUE(same_bits(t.mean_rate_hz, u.mean_rate_hz));
   EXPECT_EQ(t.gap_count, u.gap_count);
@@ -288,6 +291,28 @@ TEST(SamplingReportJson, WrittenFileReadsBackToTheSameReport) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
                           std::filesystem::directory_iterator()),
             1);
+}
+
+TEST(SamplingReportJson, PeriodFromTheMeanRoundTripsAndOlderFilesReadTheMedian) {
+  std::vector<double> t{0.0};
+  for (int i = 0; i < 300; ++i) t.push_back(t.back() + (i % 3 == 2 ? 0.11 : 0.10));
+  SamplingReport report;
+  report.samples = static_cast<std::int64_t>(t.size());
+  report.timing = analyze_timing(t);
+  ASSERT_TRUE(report.timing.period_from_mean);
+  nlohmann::ordered_json j = sampling_report_to_json(report, "alt.csv");
+  expect_same_report(report, sampling_report_from_json(j, "alt.json"));
+  // A file written before the sample period could be the mean has none of the three keys: its
+  // period is its median interval.
+  j.erase("mean_interval_s");
+  j.erase("sample_period_s");
+  j.erase("period_from_mean");
+  const TimingReport old = sampling_report_from_json(j, "old.json").timing;
+  EXPECT_EQ(old.sample_period_s, report.timing.median_interval_s);
+  EXPECT_FALSE(old.period_from_mean);
+  // Text: the rate says where it came from.
+  EXPECT_NE(format_sampling_report(report, "alt.csv").find("from the mean regular interval"),
+            std::string::npos);
 }
 
 TEST(SamplingReportJson, FixedRateReportRoundTrips) {

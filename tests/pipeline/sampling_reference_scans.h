@@ -174,6 +174,7 @@ struct Timing {
 inline Timing analyze_timing(const std::vector<double>& t, const SamplingOptions& options) {
   Timing out;
   TimingReport& r = out.report;
+  long double sum_dev = 0;
   r.has_timestamps = true;
   const std::size_t n = t.size();
   if (n < 2) return out;
@@ -214,8 +215,20 @@ inline Timing analyze_timing(const std::vector<double>& t, const SamplingOptions
     } else {
       const long double dev = d - median;
       out.jitter_rms += dev * dev;
+      sum_dev += dev;
       r.jitter_max_s = std::max(r.jitter_max_s, std::fabs(d - median));
       ++jitter_count;
+    }
+  }
+  r.sample_period_s = median;
+  if (jitter_count > 0 && median > 0.0) {
+    r.mean_interval_s =
+        static_cast<double>(median + sum_dev / static_cast<long double>(jitter_count));
+    if (std::isfinite(r.mean_interval_s) && r.mean_interval_s > 0.0 &&
+        std::fabs(r.mean_interval_s - median) > kPeriodFromMeanThreshold * median) {
+      r.sample_period_s = r.mean_interval_s;
+      r.period_from_mean = true;
+      r.rate_hz = 1.0 / r.sample_period_s;
     }
   }
   if (jitter_count == 0) return out;
@@ -308,8 +321,19 @@ inline void expect_timing_matches(const std::vector<double>& t, const SamplingOp
   const plain::Timing p = plain::analyze_timing(t, options);
   const TimingReport& e = p.report;
   EXPECT_EQ(r.has_timestamps, e.has_timestamps);
-  EXPECT_TRUE(same(r.rate_hz, e.rate_hz));
   EXPECT_TRUE(same(r.median_interval_s, e.median_interval_s));
+  // The mean regular interval is a lane-wise sum of deviations against the plain long double
+  // one: equal to rounding, and the rule that picks it agrees.
+  EXPECT_EQ(r.period_from_mean, e.period_from_mean);
+  EXPECT_TRUE(close(r.mean_interval_s, e.mean_interval_s,
+                    std::max<long double>(e.median_interval_s, std::fabs(e.mean_interval_s))));
+  if (e.period_from_mean) {
+    EXPECT_TRUE(close(r.rate_hz, e.rate_hz, e.rate_hz));
+    EXPECT_TRUE(close(r.sample_period_s, e.sample_period_s, e.sample_period_s));
+  } else {
+    EXPECT_TRUE(same(r.rate_hz, e.rate_hz));
+    EXPECT_TRUE(same(r.sample_period_s, e.sample_period_s));
+  }
   EXPECT_TRUE(same(r.duration_s, e.duration_s));
   EXPECT_TRUE(same(r.mean_rate_hz, e.mean_rate_hz));
   EXPECT_EQ(r.gap_count, e.gap_count);

@@ -74,6 +74,36 @@ TEST(AnalyzeTiming, DuplicatesAndBackwardStepsWithLines) {
   EXPECT_EQ(r.first_non_monotonic->line, 14);
 }
 
+TEST(AnalyzeTiming, AlternatingStampsGiveTheMeanIntervalAsThePeriod) {
+  // Stamped alternately 0.10 and 0.11 s after the previous one — a 10 Hz clock that slips — and
+  // two 0.10 per 0.11 so the median is 0.10: the true period is the mean, (2·0.10 + 0.11)/3.
+  std::vector<double> t{0.0};
+  for (int i = 0; i < 3000; ++i) t.push_back(t.back() + (i % 3 == 2 ? 0.11 : 0.10));
+  const TimingReport r = analyze_timing(t);
+  EXPECT_NEAR(r.median_interval_s, 0.10, 1e-12);
+  EXPECT_TRUE(r.period_from_mean);
+  EXPECT_NEAR(r.mean_interval_s, 0.31 / 3.0, 1e-12);
+  EXPECT_NEAR(r.sample_period_s, 0.31 / 3.0, 1e-12);
+  EXPECT_NEAR(r.rate_hz, 3.0 / 0.31, 1e-9);
+}
+
+TEST(AnalyzeTiming, SymmetricJitterAndGapsKeepTheMedian) {
+  // Gaussian jitter of 1 % and three gaps: the mean regular interval stays within ~0.01 %/√n of
+  // the median, far inside the 0.1 % threshold; the gaps are not regular intervals.
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> jitter(0.0, 0.01 * 0.0025);
+  std::vector<double> t{0.0};
+  for (int i = 0; i < 20000; ++i) {
+    const double gap = (i == 5000 || i == 9000 || i == 15000) ? 0.5 : 0.0;
+    t.push_back(t.back() + 0.0025 + jitter(rng) + gap);
+  }
+  const TimingReport r = analyze_timing(t);
+  EXPECT_FALSE(r.period_from_mean);
+  EXPECT_EQ(r.gap_count, 3);
+  EXPECT_EQ(r.sample_period_s, r.median_interval_s);
+  EXPECT_NEAR(r.mean_interval_s / 0.0025, 1.0, 4.0 * 0.01 / std::sqrt(20000.0));
+}
+
 TEST(AnalyzeTiming, TooFewStampsGiveNoRate) {
   EXPECT_EQ(analyze_timing(std::vector<double>{1.0}).rate_hz, 0.0);
   EXPECT_EQ(analyze_timing(std::vector<double>{}).rate_hz, 0.0);

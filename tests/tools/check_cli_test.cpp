@@ -64,6 +64,28 @@ TEST(CheckCli, JsonIsOneObjectWithUnitKeys) {
   EXPECT_NEAR(j["channels"][3]["lsb"].get<double>(), 0.01, 1e-9);
 }
 
+TEST(CheckCli, AlternatingStampsAreAnalysedAtTheirMeanInterval) {
+  // Stamps 0.10, 0.10, 0.11 s apart (a 10 Hz clock that slips every third sample): the median
+  // says 10 Hz; the 599 intervals (400 of 0.10 s, 199 of 0.11 s) average 0.103322 s.
+  std::string text = kSimulateHeader;
+  double t = 0.0;
+  for (int i = 0; i < 600; ++i) {
+    text += std::to_string(t) + ",0.001,-0.002,0.003,0.01,0,9.81\n";
+    t += i % 3 == 2 ? 0.11 : 0.10;
+  }
+  const auto path = write_fixture("alternating.csv", text);
+  const auto r = test::run_imunoise("check '" + path + "' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["median_interval_s"].get<double>(), 0.10, 1e-9);
+  EXPECT_TRUE(j["period_from_mean"].get<bool>());
+  const double mean_interval_s = (400 * 0.10 + 199 * 0.11) / 599;
+  EXPECT_NEAR(j["sample_period_s"].get<double>(), mean_interval_s, 1e-9);
+  EXPECT_NEAR(j["rate_hz"].get<double>(), 1.0 / mean_interval_s, 1e-7);
+  const auto text_report = test::run_imunoise("check '" + path + "'");
+  EXPECT_THAT(text_report.out, HasSubstr("from the mean regular interval"));
+}
+
 TEST(CheckCli, PositionalFlagsAndUnits) {
   const auto path = write_fixture("raw.txt", "0 1 2 3\n5 1 2 3\n10 1 2 3\n15 1 2 3\n");
   const auto r = test::run_imunoise("check '" + path +
