@@ -288,9 +288,13 @@ void bin_level(const LevelSpectrum& s, std::size_t length, double df, std::size_
     }
     if (key >= key_low && key < key_high) {
       const std::size_t count = end - j;
+      // The Nyquist raw bin (c = 1) holds half the density over half the width: it counts as
+      // half a bin, so that the mean is unbiased (log_bin()'s plain mean reads 1/(2·count)
+      // low there, which matters when the top bin holds few raw bins).
+      const bool nyquist = length % 2 == 0 && end - 1 == length / 2;
       out.frequency_hz.push_back(count == 1 ? static_cast<double>(j) * df
                                             : std::exp(log_f / static_cast<double>(count)));
-      out.density.push_back(power / static_cast<double>(count));
+      out.density.push_back(power / (static_cast<double>(count) - (nyquist ? 0.5 : 0.0)));
       out.dof.push_back(detail::averaged_dof(cov, s.segments, j, end - 1));
       out.first_raw_bin.push_back(j);
       out.raw_bins.push_back(count);

@@ -42,7 +42,10 @@
 /// 2 FFT points), all in cache; memory O(D·L) (the levels are streamed, nothing of size n is
 /// allocated). Sequential and deterministic. When L₀ ≤ L there is one level, and the result is
 /// log_bin(welch_psd(x)) (resp. of pooled_welch_psd) bit for bit, except sample_variance
-/// (computed in one blocked pass here: equal to rounding).
+/// (computed in one blocked pass here: equal to rounding) and the density of the bin holding
+/// f_s/2: there the Nyquist raw bin (c = 1, half density over half the width) counts as half
+/// a bin, Σ S₁/(count − ½), unbiased where log_bin()'s Σ S₁/count reads 1/(2·count) low (−10 %
+/// for the 5 raw bins of [199.5, 200] Hz at f_s = 400 Hz, L = 4096). Same dof (a rescaling).
 #pragma once
 
 #include <cstddef>

@@ -138,7 +138,9 @@ struct GaussRule {
 double hann_kernel(double u, std::size_t length) {
   const double l = static_cast<double>(length);
   const auto dirichlet = [l](double v) {
-    return std::polar(std::sin(kPi * v) / std::sin(kPi * v / l), -kPi * v * (l - 1.0) / l);
+    const double magnitude = std::sin(kPi * v) / std::sin(kPi * v / l);  // may be negative
+    const double phase = -kPi * v * (l - 1.0) / l;
+    return std::complex<double>(magnitude * std::cos(phase), magnitude * std::sin(phase));
   };
   const std::complex<double> w =
       0.5 * dirichlet(u) - 0.25 * dirichlet(u - 1.0) - 0.25 * dirichlet(u + 1.0);
@@ -169,13 +171,19 @@ double expected_raw(const std::function<double(double)>& s1, std::size_t j, doub
   return (j == length / 2 ? 0.5 : 1.0) * sum;
 }
 
-/// The mean of expected_raw over the raw bins of binned point I.
+/// Binned point I ends at the Nyquist raw bin L/2 (counted as half a bin in its mean).
+bool holds_nyquist(const Spectrum& s, std::size_t i) {
+  return s.first_raw_bin[i] + s.raw_bins[i] - 1 == s.segment_length / 2;
+}
+
+/// The expectation of binned point I: Σ expected_raw over its raw bins / (n, or n − ½ with
+/// the Nyquist bin).
 double expected_bin(const Spectrum& s, std::size_t i, const std::function<double(double)>& s1) {
   double sum = 0.0;
   for (std::size_t j = 0; j < s.raw_bins[i]; ++j) {
     sum += expected_raw(s1, s.first_raw_bin[i] + j, s.bin_resolution_hz[i], s.segment_length);
   }
-  return sum / static_cast<double>(s.raw_bins[i]);
+  return sum / (static_cast<double>(s.raw_bins[i]) - (holds_nyquist(s, i) ? 0.5 : 0.0));
 }
 
 /// Level of binned point I: its spacing is f_s/(2^d·L).
@@ -279,7 +287,12 @@ TEST(MultiratePsd, OneLevelIsTheClassicLogBinnedWelchBitForBit) {
   const Spectrum c = log_bin(welch_psd(x, 50.0), 10);
   const Spectrum m = multirate_psd(x, 50.0);
   EXPECT_EQ(m.frequency_hz, c.frequency_hz);
-  EXPECT_EQ(m.density, c.density);
+  ASSERT_EQ(m.density.size(), c.density.size());
+  for (std::size_t i = 0; i + 1 < m.density.size(); ++i) EXPECT_EQ(m.density[i], c.density[i]);
+  // The top bin ends at Nyquist (raw bin L/2, c = 1): Σ S₁/(n − ½) instead of Σ S₁/n.
+  const double n_top = static_cast<double>(m.raw_bins.back());
+  EXPECT_EQ(m.first_raw_bin.back() + m.raw_bins.back() - 1, 1024u);
+  EXPECT_NEAR(m.density.back(), c.density.back() * n_top / (n_top - 0.5), 1e-15 * m.density.back());
   EXPECT_EQ(m.dof, c.dof);
   EXPECT_EQ(m.first_raw_bin, c.first_raw_bin);
   EXPECT_EQ(m.raw_bins, c.raw_bins);
@@ -297,7 +310,7 @@ TEST(MultiratePsd, OneLevelIsTheClassicLogBinnedWelchBitForBit) {
   const Spectrum pm = pooled_multirate_psd(pieces, 50.0, {}, &used_m);
   EXPECT_EQ(used_m, used_c);
   EXPECT_EQ(used_m, 2u);
-  EXPECT_EQ(pm.density, pc.density);
+  for (std::size_t i = 0; i + 1 < pm.density.size(); ++i) EXPECT_EQ(pm.density[i], pc.density[i]);
   EXPECT_EQ(pm.dof, pc.dof);
   EXPECT_EQ(pm.integrated_power, pc.integrated_power);
 }
@@ -308,9 +321,9 @@ TEST(MultiratePsd, OneLevelIsTheClassicLogBinnedWelchBitForBit) {
 TEST(MultiratePsd, WhiteNoiseIsFlatAtTwoNSquaredWithinItsDofInEveryBin) {
   // theory.md §1.2: ARW N sampled as σ = N/√τ0 sits at S₁ = 2N². Exceptions stated by the
   // estimator's maths: raw bin 1 of the deepest level loses 1/6 to the segment mean (Hann:
-  // Σ|w − W₁/L|² = Σw² − |W₁|²/L = 3L/8 − L/16, i.e. 5/6), and the Nyquist bin has c = 1
-  // (half the level). Every bin within its two-sided 1 − 1e-4 χ² interval: ~60 bins, a false
-  // alarm in < 1 % of seeds.
+  // Σ|w − W₁/L|² = Σw² − |W₁|²/L = 3L/8 − L/16, i.e. 5/6); the Nyquist raw bin (c = 1, half
+  // the level) counts as half a bin in its mean, so the top bin is at the level. Every bin
+  // within its two-sided 1 − 1e-4 χ² interval: ~60 bins, a false alarm in < 1 % of seeds.
   const double rate = 200.0, arw = 0.01;
   const auto x = white(std::size_t{1} << 22, arw * std::sqrt(rate), 4);
   const Spectrum s = multirate_psd(x, rate);
@@ -321,7 +334,7 @@ TEST(MultiratePsd, WhiteNoiseIsFlatAtTwoNSquaredWithinItsDofInEveryBin) {
     for (std::size_t j = s.first_raw_bin[i]; j < s.first_raw_bin[i] + s.raw_bins[i]; ++j) {
       factor += j == 1 ? 5.0 / 6.0 : (j == s.segment_length / 2 ? 0.5 : 1.0);
     }
-    factor /= static_cast<double>(s.raw_bins[i]);
+    factor /= static_cast<double>(s.raw_bins[i]) - (holds_nyquist(s, i) ? 0.5 : 0.0);
     const double ratio = s.density[i] / (2.0 * arw * arw * factor);
     const auto [lo, hi] = chi2_interval(s.dof[i], 1e-4);
     EXPECT_GE(ratio, lo) << "bin " << s.frequency_hz[i] << " Hz, level " << level_of(s, i)
@@ -524,10 +537,12 @@ TEST(MultiratePsd, ParsevalIntegratedPowerMatchesSampleVariance) {
   const Spectrum s = multirate_psd(x, 200.0);
   EXPECT_NEAR(s.integrated_power / s.sample_variance, 1.0, 0.01);
   EXPECT_NEAR(s.sample_variance, 0.09, 0.09 * 5.0 * std::sqrt(2.0 / static_cast<double>(x.size())));
-  // The bins alone: Σ density·(raw bins)·Δf is the same sum without the DC bin.
+  // The bins alone: Σ density·(raw bins)·Δf is the same sum without the DC bin (the Nyquist
+  // raw bin counting as half a bin).
   double bins = 0.0;
   for (std::size_t i = 0; i < s.density.size(); ++i) {
-    bins += s.density[i] * static_cast<double>(s.raw_bins[i]) * s.bin_resolution_hz[i];
+    const double width = static_cast<double>(s.raw_bins[i]) - (holds_nyquist(s, i) ? 0.5 : 0.0);
+    bins += s.density[i] * width * s.bin_resolution_hz[i];
   }
   EXPECT_NEAR(bins / s.integrated_power, 1.0, 1e-4);
   // Linear detrend: the sample variance about the least-squares line, one blocked pass.
