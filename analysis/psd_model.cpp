@@ -286,12 +286,12 @@ PsdReadoff psd_readoff(const Spectrum& binned) {
   IMUNOISE_EXPECT(n > 0, "psd_readoff: the spectrum is empty");
   IMUNOISE_EXPECT(binned.density.size() == n && binned.dof.size() == n,
                   "psd_readoff: frequency, density and dof sizes differ");
-  IMUNOISE_EXPECT(binned.sample_rate_hz > 0.0 ||
-                      (binned.resolution_hz > 0.0 && binned.segment_length > 0),
-                  "psd_readoff: sample_rate_hz, or resolution_hz and segment_length, must be set "
-                  "(got " +
-                      text(binned.sample_rate_hz) + " Hz, " + text(binned.resolution_hz) + " Hz, " +
-                      std::to_string(binned.segment_length) + ")");
+  IMUNOISE_EXPECT(
+      binned.sample_rate_hz > 0.0 || (binned.resolution_hz > 0.0 && binned.segment_length > 0),
+      "psd_readoff: sample_rate_hz, or resolution_hz and segment_length, must be set "
+      "(got " +
+          text(binned.sample_rate_hz) + " Hz, " + text(binned.resolution_hz) + " Hz, " +
+          std::to_string(binned.segment_length) + ")");
   for (std::size_t i = 0; i < n; ++i) {
     const bool ok = std::isfinite(binned.frequency_hz[i]) && binned.frequency_hz[i] > 0.0 &&
                     std::isfinite(binned.density[i]) && binned.density[i] > 0.0 &&
