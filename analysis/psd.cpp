@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 
+#include "analysis/psd_internal.h"
 #include "common/errors.h"
 #include "common/fftw_planner_lock.h"
 
@@ -30,37 +31,25 @@ std::string text(double value) {
   return buffer;
 }
 
-/// Bins j = 0 and j = L/2 (even L) are real-valued: weight c_j = 1 instead of 2 in the
-/// one-sided density (theory.md §5.1), and χ² with half the dof.
+/// Mean square of the whole record about its trend of MODE (two passes, no copy).
+double detrended_mean_square(std::span<const double> x, Detrend mode) {
+  const detail::Trend trend = detail::fit_trend(x, mode);
+  double sum = 0.0;
+  for (std::size_t n = 0; n < x.size(); ++n) {
+    const double r = x[n] - trend.at(n);
+    sum += r * r;
+  }
+  return sum / static_cast<double>(x.size());
+}
+
+}  // namespace
+
+namespace detail {
+
 bool is_real_bin(std::size_t j, std::size_t length) {
   return j == 0 || (length % 2 == 0 && j == length / 2);
 }
 
-/// Covariance of the powers of raw bins j and j' summed over segments (see
-/// Spectrum::power_covariance): g(|j − j'|) + g(fold(j + j')), the second term being the
-/// pseudo-covariance E[X_j X_j'] that couples bins to their mirror images about DC and
-/// Nyquist (Isserlis: Cov(|X|², |Y|²) = |E[XY*]|² + |E[XY]|²).
-struct PowerCovariance {
-  std::span<const double> g;  ///< g(Δ), Δ = 0…⌊L/2⌋
-  std::size_t length = 0;     ///< L
-
-  /// g at any lag: L-periodic and even. The callers' lags stay below 2L, so one subtraction
-  /// replaces the division (4.2 M raw bins per channel at L = 2^23).
-  double at(std::size_t lag) const {
-    if (lag >= length) lag = lag < 2 * length ? lag - length : lag % length;
-    return g[std::min(lag, length - lag)];
-  }
-  double pair(std::size_t j, std::size_t k) const { return at(j > k ? j - k : k - j) + at(j + k); }
-  /// Σ_{k=a}^{b} pair(j, k).
-  double row(std::size_t j, std::size_t a, std::size_t b) const {
-    double sum = 0.0;
-    for (std::size_t k = a; k <= b; ++k) sum += pair(j, k);
-    return sum;
-  }
-};
-
-/// Equivalent χ² dof of the average of the one-sided densities of raw bins a…b, for a
-/// spectrum flat over them: ν = 2·(E Σ)²/Var Σ = 2K(Σc_j)² / Σ_{j,k} c_j c_k cov(j, k).
 /// The double sum is done in O(b − a) by grouping pairs by j − k and by j + k, with the
 /// weights written c_j = 2 − e_j (e_j = 1 at the real DC / Nyquist bins).
 double averaged_dof(const PowerCovariance& cov, std::size_t segments, std::size_t a,
@@ -111,21 +100,25 @@ void check_options(const WelchOptions& options) {
   }
 }
 
-/// Least-squares trend of MODE: x_n ≈ mean + slope·(n − centre), with the centred index
-/// (centre = (n−1)/2) so that mean and slope decouple; slope = Σt·x/Σt², Σt² = n(n²−1)/12.
-struct Trend {
-  double mean = 0.0;
-  double slope = 0.0;
-  double centre = 0.0;
-  double at(std::size_t n) const { return mean + slope * (static_cast<double>(n) - centre); }
-};
+double lane_sum(const double* x, std::size_t n) {
+  constexpr std::size_t kLanes = 8;
+  double lane[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) lane[l] += x[i + l];
+  }
+  for (; i < n; ++i) lane[i % kLanes] += x[i];
+  for (std::size_t width = kLanes / 2; width >= 1; width /= 2) {
+    for (std::size_t l = 0; l < width; ++l) lane[l] += lane[l + width];
+  }
+  return lane[0];
+}
 
 Trend fit_trend(std::span<const double> x, Detrend mode) {
   Trend t;
   if (mode == Detrend::none || x.empty()) return t;
   const double count = static_cast<double>(x.size());
-  for (double v : x) t.mean += v;
-  t.mean /= count;
+  t.mean = lane_sum(x.data(), x.size()) / count;
   t.centre = 0.5 * (count - 1.0);
   if (mode == Detrend::linear && x.size() > 1) {
     double sxt = 0.0;
@@ -137,18 +130,124 @@ Trend fit_trend(std::span<const double> x, Detrend mode) {
   return t;
 }
 
-/// Mean square of the whole record about its trend of MODE (two passes, no copy).
-double detrended_mean_square(std::span<const double> x, Detrend mode) {
-  const Trend trend = fit_trend(x, mode);
-  double sum = 0.0;
-  for (std::size_t n = 0; n < x.size(); ++n) {
-    const double r = x[n] - trend.at(n);
-    sum += r * r;
+struct SegmentTransform::Impl {
+  std::size_t length = 0;  // L
+  std::size_t step = 0;    // segment advance
+  std::size_t bins = 0;    // ⌊L/2⌋ + 1
+  Detrend detrend = Detrend::constant;
+  std::vector<double> window;
+  double window_energy = 0.0;  // Σ w²
+  std::unique_ptr<double[], FftwFree> in;
+  std::unique_ptr<fftw_complex[], FftwFree> out;
+  fftw_plan plan = nullptr;
+  bool from_wisdom = false;  // plan rebuilt from imported wisdom (FFTW_MEASURE or better)
+
+  ~Impl() {
+    // FFTW guarantees thread safety for fftw_execute only, so buffers are freed under the
+    // planner mutex too.
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    if (plan != nullptr) fftw_destroy_plan(plan);
+    in.reset();
+    out.reset();
   }
-  return sum / static_cast<double>(x.size());
+};
+
+SegmentTransform::SegmentTransform(std::size_t length, const WelchOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  check_options(options);
+  IMUNOISE_EXPECT(
+      length >= 2 && length <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+      "welch: segment_length must be >= 2 and fit an int (got " + std::to_string(length) + ")");
+  Impl& s = *impl_;
+  s.length = length;
+  s.detrend = options.detrend;
+  const auto shared =
+      static_cast<std::size_t>(std::floor(options.overlap * static_cast<double>(s.length)));
+  s.step = s.length - std::min(shared, s.length - 1);
+  s.bins = s.length / 2 + 1;
+  s.window = window_coefficients(options.window, s.length);
+  for (double v : s.window) s.window_energy += v * v;
+  {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    s.in.reset(static_cast<double*>(fftw_malloc(sizeof(double) * s.length)));
+    s.out.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * s.bins)));
+    if (s.in && s.out) {
+      // Wisdom first: a plan of at least FFTW_MEASURE rigour rebuilt from imported wisdom
+      // (never a measurement here: WISDOM_ONLY returns null instead); else the heuristic plan.
+      const int n = static_cast<int>(s.length);
+      s.plan = fftw_plan_dft_r2c_1d(n, s.in.get(), s.out.get(), FFTW_MEASURE | FFTW_WISDOM_ONLY);
+      s.from_wisdom = s.plan != nullptr;
+      if (s.plan == nullptr) {
+        s.plan = fftw_plan_dft_r2c_1d(n, s.in.get(), s.out.get(), FFTW_ESTIMATE);
+      }
+    }
+  }
+  if (!s.in || !s.out) throw AnalysisError("welch: out of memory for FFT buffers");
+  if (s.plan == nullptr) throw AnalysisError("welch: FFTW could not plan the transform");
 }
 
-}  // namespace
+SegmentTransform::~SegmentTransform() = default;
+SegmentTransform::SegmentTransform(SegmentTransform&&) noexcept = default;
+SegmentTransform& SegmentTransform::operator=(SegmentTransform&&) noexcept = default;
+
+std::size_t SegmentTransform::length() const { return impl_->length; }
+std::size_t SegmentTransform::step() const { return impl_->step; }
+std::size_t SegmentTransform::bins() const { return impl_->bins; }
+double SegmentTransform::window_energy() const { return impl_->window_energy; }
+bool SegmentTransform::from_wisdom() const { return impl_->from_wisdom; }
+Detrend SegmentTransform::detrend() const { return impl_->detrend; }
+
+void SegmentTransform::add_segment(const double* segment, double* power) {
+  Impl& s = *impl_;
+  // Trend and taper straight from the record, with no copy of the segment first: at
+  // L = 2^23 a segment is 64 MiB, out of cache, and the copy was one more pass over memory.
+  const Trend trend = fit_trend(std::span<const double>(segment, s.length), s.detrend);
+  double* __restrict buffer = s.in.get();
+  const double* __restrict window = s.window.data();
+  if (trend.slope == 0.0) {
+    // No detrend or the mean only: the same numbers as the line below (trend.at(n) is the
+    // mean exactly), in a loop the compiler vectorises.
+    const double mean = trend.mean;
+    for (std::size_t n = 0; n < s.length; ++n) buffer[n] = (segment[n] - mean) * window[n];
+  } else {
+    for (std::size_t n = 0; n < s.length; ++n) {
+      buffer[n] = (segment[n] - trend.at(n)) * window[n];
+    }
+  }
+  fftw_execute(s.plan);
+  const double* __restrict spectrum = s.out[0];  // re, im interleaved
+  double* __restrict sum = power;
+  for (std::size_t j = 0; j < s.bins; ++j) {
+    sum[j] += spectrum[2 * j] * spectrum[2 * j] + spectrum[2 * j + 1] * spectrum[2 * j + 1];
+  }
+}
+
+std::vector<double> SegmentTransform::power_covariance(std::size_t segments) {
+  Impl& s = *impl_;
+  // For white input of variance σ², the DFTs of two segments d samples apart have, at bins
+  // Δ apart, covariance σ²·C(Δ, d) with C(Δ, d) = Σ_n w_n w_{n+d} e^{−2πiΔn/L}. Hence
+  // g(Δ) = Σ_{k,k'} |C(Δ, (k'−k)·step)|² / (K (Σw²)²), lag l occurring 2(K − l) times (once
+  // for l = 0); g(0) is Welch's K/K_eff. Only lags l·step < L overlap: at 50 % overlap that
+  // is two FFTs, and never more than K, so this costs at most as much as the estimate.
+  std::vector<double> g(s.bins, 0.0);
+  double* buffer = s.in.get();
+  const double k_count = static_cast<double>(segments);
+  const double norm = 1.0 / (s.window_energy * s.window_energy);
+  for (std::size_t l = 0; l < segments && l * s.step < s.length; ++l) {
+    const std::size_t d = l * s.step;
+    for (std::size_t n = 0; n < s.length; ++n) {
+      buffer[n] = n + d < s.length ? s.window[n] * s.window[n + d] : 0.0;
+    }
+    fftw_execute(s.plan);
+    const double weight = (l == 0 ? 1.0 : 2.0 * (1.0 - static_cast<double>(l) / k_count)) * norm;
+    for (std::size_t j = 0; j < s.bins; ++j) {
+      g[j] += weight * (s.out[j][0] * s.out[j][0] + s.out[j][1] * s.out[j][1]);
+    }
+  }
+  return g;
+}
+
+}  // namespace detail
 
 std::vector<double> window_coefficients(Window window, std::size_t length) {
   IMUNOISE_EXPECT(length >= 2,
@@ -201,76 +300,27 @@ double effective_segments(std::span<const double> window, std::size_t segments, 
 }
 
 struct WelchEstimator::Impl {
-  std::size_t length = 0;  // L
-  std::size_t step = 0;    // segment advance
-  std::size_t bins = 0;    // ⌊L/2⌋ + 1
-  WelchOptions options;
-  std::vector<double> window;
-  double window_energy = 0.0;  // Σ w²
-  std::unique_ptr<double[], FftwFree> in;
-  std::unique_ptr<fftw_complex[], FftwFree> out;
-  fftw_plan plan = nullptr;
-  bool from_wisdom = false;   // plan rebuilt from imported wisdom (FFTW_MEASURE or better)
+  detail::SegmentTransform transform;
   std::vector<double> power;  // Σ over segments of |X_j|²
-
-  ~Impl() {
-    // FFTW guarantees thread safety for fftw_execute only, so buffers are freed under the
-    // planner mutex too.
-    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    if (plan != nullptr) fftw_destroy_plan(plan);
-    in.reset();
-    out.reset();
-  }
 };
 
-WelchEstimator::WelchEstimator(std::size_t segment_length, const WelchOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-  check_options(options);
-  IMUNOISE_EXPECT(segment_length >= 2 &&
-                      segment_length <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
-                  "welch: segment_length must be >= 2 and fit an int (got " +
-                      std::to_string(segment_length) + ")");
+WelchEstimator::WelchEstimator(std::size_t segment_length, const WelchOptions& options) {
+  detail::SegmentTransform transform(segment_length, options);  // checks options and L
   IMUNOISE_EXPECT(options.segment_length == 0 || options.segment_length == segment_length,
                   "welch: options.segment_length (" + std::to_string(options.segment_length) +
                       ") differs from the estimator's segment_length (" +
                       std::to_string(segment_length) + ")");
-  Impl& s = *impl_;
-  s.length = segment_length;
-  s.options = options;
-  s.options.segment_length = segment_length;
-  const auto shared =
-      static_cast<std::size_t>(std::floor(options.overlap * static_cast<double>(s.length)));
-  s.step = s.length - std::min(shared, s.length - 1);
-  s.bins = s.length / 2 + 1;
-  s.window = window_coefficients(options.window, s.length);
-  for (double v : s.window) s.window_energy += v * v;
-  s.power.assign(s.bins, 0.0);
-  {
-    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    s.in.reset(static_cast<double*>(fftw_malloc(sizeof(double) * s.length)));
-    s.out.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * s.bins)));
-    if (s.in && s.out) {
-      // Wisdom first: a plan of at least FFTW_MEASURE rigour rebuilt from imported wisdom
-      // (never a measurement here: WISDOM_ONLY returns null instead); else the heuristic plan.
-      const int n = static_cast<int>(s.length);
-      s.plan = fftw_plan_dft_r2c_1d(n, s.in.get(), s.out.get(), FFTW_MEASURE | FFTW_WISDOM_ONLY);
-      s.from_wisdom = s.plan != nullptr;
-      if (s.plan == nullptr) {
-        s.plan = fftw_plan_dft_r2c_1d(n, s.in.get(), s.out.get(), FFTW_ESTIMATE);
-      }
-    }
-  }
-  if (!s.in || !s.out) throw AnalysisError("welch: out of memory for FFT buffers");
-  if (s.plan == nullptr) throw AnalysisError("welch: FFTW could not plan the transform");
+  std::vector<double> power(transform.bins(), 0.0);
+  impl_ = std::make_unique<Impl>(Impl{std::move(transform), std::move(power)});
 }
 
 WelchEstimator::~WelchEstimator() = default;
 WelchEstimator::WelchEstimator(WelchEstimator&&) noexcept = default;
 WelchEstimator& WelchEstimator::operator=(WelchEstimator&&) noexcept = default;
 
-std::size_t WelchEstimator::segment_length() const { return impl_->length; }
+std::size_t WelchEstimator::segment_length() const { return impl_->transform.length(); }
 
-bool WelchEstimator::planned_from_wisdom() const { return impl_->from_wisdom; }
+bool WelchEstimator::planned_from_wisdom() const { return impl_->transform.from_wisdom(); }
 
 std::size_t automatic_segment_length(std::size_t samples) {
   IMUNOISE_EXPECT(samples >= 16,
@@ -282,13 +332,14 @@ std::size_t automatic_segment_length(std::size_t samples) {
 }
 
 Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_hz) {
-  Impl& s = *impl_;
+  detail::SegmentTransform& t = impl_->transform;
+  const std::size_t length = t.length(), step = t.step(), bins = t.bins();
   IMUNOISE_EXPECT(
       std::isfinite(sample_rate_hz) && sample_rate_hz > 0.0,
       "welch: sample rate must be finite and > 0 (got " + text(sample_rate_hz) + " Hz)");
-  IMUNOISE_EXPECT(x.size() >= s.length, "welch: record of " + std::to_string(x.size()) +
-                                            " samples is shorter than one segment of " +
-                                            std::to_string(s.length));
+  IMUNOISE_EXPECT(x.size() >= length, "welch: record of " + std::to_string(x.size()) +
+                                          " samples is shorter than one segment of " +
+                                          std::to_string(length));
   for (std::size_t n = 0; n < x.size(); ++n) {
     if (!std::isfinite(x[n])) {
       throw ContractViolation("welch: sample " + std::to_string(n) + " is not finite (" +
@@ -296,63 +347,32 @@ Spectrum WelchEstimator::estimate(std::span<const double> x, double sample_rate_
     }
   }
 
-  const std::size_t segments = (x.size() - s.length) / s.step + 1;
-  std::fill(s.power.begin(), s.power.end(), 0.0);
-  const std::span<double> buffer(s.in.get(), s.length);
-  for (std::size_t k = 0; k < segments; ++k) {
-    // Trend and taper straight from the record, with no copy of the segment first: at
-    // L = 2^23 a segment is 64 MiB, out of cache, and the copy was one more pass over memory.
-    const std::span<const double> segment = x.subspan(k * s.step, s.length);
-    const Trend trend = fit_trend(segment, s.options.detrend);
-    for (std::size_t n = 0; n < s.length; ++n) {
-      buffer[n] = (segment[n] - trend.at(n)) * s.window[n];
-    }
-    fftw_execute(s.plan);
-    for (std::size_t j = 0; j < s.bins; ++j) {
-      s.power[j] += s.out[j][0] * s.out[j][0] + s.out[j][1] * s.out[j][1];
-    }
-  }
+  const std::size_t segments = (x.size() - length) / step + 1;
+  std::vector<double>& power = impl_->power;
+  std::fill(power.begin(), power.end(), 0.0);
+  for (std::size_t k = 0; k < segments; ++k) t.add_segment(x.data() + k * step, power.data());
 
   Spectrum result;
   result.segments = segments;
-  result.segment_length = s.length;
-  result.fft_plan_from_wisdom = s.from_wisdom;
-  result.resolution_hz = sample_rate_hz / static_cast<double>(s.length);
-  result.frequency_hz.resize(s.bins);
-  result.density.resize(s.bins);
-  result.dof.resize(s.bins);
+  result.segment_length = length;
+  result.sample_rate_hz = sample_rate_hz;
+  result.fft_plan_from_wisdom = t.from_wisdom();
+  result.resolution_hz = sample_rate_hz / static_cast<double>(length);
+  result.frequency_hz.resize(bins);
+  result.density.resize(bins);
+  result.dof.resize(bins);
   // theory.md §5.1: P(f_j) = c_j |Σ w_n x_n e^{−2πijn/L}|² / (f_s Σ w_n²), averaged over K.
-  const double scale = 1.0 / (sample_rate_hz * s.window_energy * static_cast<double>(segments));
-  for (std::size_t j = 0; j < s.bins; ++j) {
+  const double scale = 1.0 / (sample_rate_hz * t.window_energy() * static_cast<double>(segments));
+  for (std::size_t j = 0; j < bins; ++j) {
     result.frequency_hz[j] = static_cast<double>(j) * result.resolution_hz;
-    result.density[j] = (is_real_bin(j, s.length) ? 1.0 : 2.0) * scale * s.power[j];
+    result.density[j] = (detail::is_real_bin(j, length) ? 1.0 : 2.0) * scale * power[j];
     result.integrated_power += result.density[j] * result.resolution_hz;
   }
+  result.power_covariance = t.power_covariance(segments);
+  const detail::PowerCovariance cov{result.power_covariance, length};
+  for (std::size_t j = 0; j < bins; ++j) result.dof[j] = detail::averaged_dof(cov, segments, j, j);
 
-  // For white input of variance σ², the DFTs of two segments d samples apart have, at bins
-  // Δ apart, covariance σ²·C(Δ, d) with C(Δ, d) = Σ_n w_n w_{n+d} e^{−2πiΔn/L}. Hence
-  // g(Δ) = Σ_{k,k'} |C(Δ, (k'−k)·step)|² / (K (Σw²)²), lag l occurring 2(K − l) times (once
-  // for l = 0); g(0) is Welch's K/K_eff. Only lags l·step < L overlap: at 50 % overlap that
-  // is two FFTs, and never more than K, so this costs at most as much as the estimate.
-  result.power_covariance.assign(s.bins, 0.0);
-  const double k_count = static_cast<double>(segments);
-  const double norm = 1.0 / (s.window_energy * s.window_energy);
-  for (std::size_t l = 0; l < segments && l * s.step < s.length; ++l) {
-    const std::size_t d = l * s.step;
-    for (std::size_t n = 0; n < s.length; ++n) {
-      buffer[n] = n + d < s.length ? s.window[n] * s.window[n + d] : 0.0;
-    }
-    fftw_execute(s.plan);
-    const double weight = (l == 0 ? 1.0 : 2.0 * (1.0 - static_cast<double>(l) / k_count)) * norm;
-    for (std::size_t j = 0; j < s.bins; ++j) {
-      result.power_covariance[j] +=
-          weight * (s.out[j][0] * s.out[j][0] + s.out[j][1] * s.out[j][1]);
-    }
-  }
-  const PowerCovariance cov{result.power_covariance, s.length};
-  for (std::size_t j = 0; j < s.bins; ++j) result.dof[j] = averaged_dof(cov, segments, j, j);
-
-  result.sample_variance = detrended_mean_square(x, s.options.detrend);
+  result.sample_variance = detrended_mean_square(x, t.detrend());
   return result;
 }
 
@@ -399,6 +419,7 @@ Spectrum pooled_welch_psd(std::span<const std::span<const double>> pieces, doubl
 
   Spectrum out;
   out.segment_length = length;
+  out.sample_rate_hz = sample_rate_hz;
   out.fft_plan_from_wisdom = parts.front().fft_plan_from_wisdom;  // one estimator for all
   out.resolution_hz = parts.front().resolution_hz;
   out.frequency_hz = parts.front().frequency_hz;
@@ -446,12 +467,13 @@ Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
   const bool correlated = !raw.power_covariance.empty() && raw.segments > 0 &&
                           raw.power_covariance.size() == raw.segment_length / 2 + 1 &&
                           raw.frequency_hz.size() == raw.power_covariance.size();
-  const PowerCovariance cov{raw.power_covariance, raw.segment_length};
+  const detail::PowerCovariance cov{raw.power_covariance, raw.segment_length};
 
   Spectrum out;
   out.resolution_hz = raw.resolution_hz;
   out.segments = raw.segments;
   out.segment_length = raw.segment_length;
+  out.sample_rate_hz = raw.sample_rate_hz;
   out.fft_plan_from_wisdom = raw.fft_plan_from_wisdom;
   out.sample_variance = raw.sample_variance;
   out.integrated_power = raw.integrated_power;
@@ -483,7 +505,7 @@ Spectrum log_bin(const Spectrum& raw, int bins_per_decade) {
     out.frequency_hz.push_back(count == 1 ? raw.frequency_hz[j]
                                           : std::exp(log_f / static_cast<double>(count)));
     out.density.push_back(power / static_cast<double>(count));
-    out.dof.push_back(correlated ? averaged_dof(cov, raw.segments, j, end - 1) : dof_sum);
+    out.dof.push_back(correlated ? detail::averaged_dof(cov, raw.segments, j, end - 1) : dof_sum);
     out.first_raw_bin.push_back(j);
     out.raw_bins.push_back(count);
     j = end;

@@ -41,28 +41,41 @@ struct WelchOptions {
   Detrend detrend = Detrend::constant;
 };
 
-/// A one-sided spectrum, raw (one value per DFT bin) or log-binned (log_bin()).
+/// A one-sided spectrum, raw (one value per DFT bin), log-binned (log_bin()) or multi-rate
+/// log-binned (analysis/multirate_psd.h: every bin from one level of a decimation cascade, each
+/// level its own raw bin spacing, given per bin in bin_resolution_hz).
 struct Spectrum {
-  std::vector<double> frequency_hz;   ///< raw: j·f_s/L, j = 0…⌊L/2⌋; binned: geometric mean
-                                      ///< of the raw frequencies in the bin [Hz]
-  std::vector<double> density;        ///< S₁ [unit²/Hz]; binned: mean of the raw S₁ in the bin
-  std::vector<double> dof;            ///< equivalent χ² degrees of freedom of each value
-  double resolution_hz = 0.0;         ///< raw bin spacing f_s/L [Hz]
-  std::size_t segments = 0;           ///< K, number of segments averaged
-  std::size_t segment_length = 0;     ///< L [samples]
+  std::vector<double> frequency_hz;  ///< raw: j·f_s/L, j = 0…⌊L/2⌋; binned: geometric mean
+                                     ///< of the raw frequencies in the bin [Hz]
+  std::vector<double> density;       ///< S₁ [unit²/Hz]; binned: mean of the raw S₁ in the bin
+  std::vector<double> dof;           ///< equivalent χ² degrees of freedom of each value
+  /// Raw bin spacing f_s/L [Hz]; multi-rate: the finest spacing, that of the deepest level
+  /// (f_s/L₀ with the classic L₀ = automatic_segment_length(n), the lowest bins' spacing).
+  double resolution_hz = 0.0;
+  std::size_t segments = 0;           ///< K, number of segments averaged (multi-rate: at the
+                                      ///< deepest level)
+  std::size_t segment_length = 0;     ///< L [samples] (multi-rate: of every level)
+  double sample_rate_hz = 0.0;        ///< f_s of the record [Hz]; 0 in hand-made spectra, whose
+                                      ///< users then take resolution_hz·segment_length
   bool fft_plan_from_wisdom = false;  ///< the FFT plan came from imported FFTW wisdom
   double sample_variance = 0.0;       ///< mean square of the whole record after the same detrend
                                       ///< (none: raw mean square) [unit²], for the Parseval check
-  double integrated_power = 0.0;      ///< Σ S₁·f_s/L over all raw bins [unit²]
+  /// Σ S₁·f_s/L over all raw bins [unit²]; multi-rate: Σ S₁·Δf over the raw bins behind the
+  /// bins (each at its level's spacing Δf) plus the deepest level's DC bin.
+  double integrated_power = 0.0;
   /// Raw spectra only: g(Δ), Δ = 0…⌊L/2⌋, the covariance of the segment-summed powers of
   /// two bins Δ apart, Cov(P_j, P_{j+Δ}) / (K·E[|X_j|²]²), for a locally flat Gaussian
   /// spectrum. It combines the window's frequency correlation with the segment overlap;
   /// g(0) = K/K_eff. log_bin() uses it for the dof of averaged bins. Empty: independent bins.
   std::vector<double> power_covariance;
   /// Binned spectra only: index j of the first raw bin in each bin and the number of raw
-  /// bins averaged (raw frequencies first·Δf … (first + count − 1)·Δf). Empty for raw.
+  /// bins averaged (raw frequencies first·Δf … (first + count − 1)·Δf, Δf = resolution_hz or,
+  /// when given, bin_resolution_hz of the bin). Empty for raw.
   std::vector<std::size_t> first_raw_bin;
   std::vector<std::size_t> raw_bins;
+  /// Multi-rate spectra only: the raw bin spacing Δf of each bin's level [Hz]. Empty: every
+  /// bin at resolution_hz.
+  std::vector<double> bin_resolution_hz;
 };
 
 /// @name Windows and the Welch overlap correction (Welch 1967, IEEE Trans. AU-15, eq. for

@@ -205,12 +205,16 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
                       text(binned.resolution_hz) + " Hz)");
   const bool has_ranges = binned.first_raw_bin.size() == binned.frequency_hz.size() &&
                           binned.raw_bins.size() == binned.frequency_hz.size();
+  IMUNOISE_EXPECT(binned.bin_resolution_hz.empty() ||
+                      binned.bin_resolution_hz.size() == binned.frequency_hz.size(),
+                  "cross_check_psd: bin_resolution_hz has " +
+                      std::to_string(binned.bin_resolution_hz.size()) + " values for " +
+                      std::to_string(binned.frequency_hz.size()) + " bins");
   for (const Sinusoid& line : model.sinusoids) {
     IMUNOISE_EXPECT(std::isfinite(line.frequency_hz) && std::isfinite(line.amplitude),
                     "cross_check_psd: sinusoid with a non-finite value");
   }
-  const double res = binned.resolution_hz;
-  const double f_low = 3.0 * res;
+  const double f_low = 3.0 * binned.resolution_hz;
   const double f_high = f_max_hz > 0.0 ? f_max_hz : 0.8 * 0.5 / tau0_s;
 
   PsdCrossCheck check;
@@ -218,6 +222,10 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
   for (std::size_t i = 0; i < binned.frequency_hz.size(); ++i) {
     const double f = binned.frequency_hz[i];
     if (!(f >= f_low && f <= f_high)) continue;
+    // Raw bin spacing of this bin: a multi-rate spectrum's bins come from levels of
+    // different spacing.
+    const double res =
+        binned.bin_resolution_hz.empty() ? binned.resolution_hz : binned.bin_resolution_hz[i];
     double lo = f, hi = f;
     if (has_ranges) {
       IMUNOISE_EXPECT(binned.raw_bins[i] > 0,
@@ -278,10 +286,12 @@ PsdReadoff psd_readoff(const Spectrum& binned) {
   IMUNOISE_EXPECT(n > 0, "psd_readoff: the spectrum is empty");
   IMUNOISE_EXPECT(binned.density.size() == n && binned.dof.size() == n,
                   "psd_readoff: frequency, density and dof sizes differ");
-  IMUNOISE_EXPECT(binned.resolution_hz > 0.0 && binned.segment_length > 0,
-                  "psd_readoff: resolution_hz and segment_length must be set (got " +
-                      text(binned.resolution_hz) + " Hz, " + std::to_string(binned.segment_length) +
-                      ")");
+  IMUNOISE_EXPECT(
+      binned.sample_rate_hz > 0.0 || (binned.resolution_hz > 0.0 && binned.segment_length > 0),
+      "psd_readoff: sample_rate_hz, or resolution_hz and segment_length, must be set "
+      "(got " +
+          text(binned.sample_rate_hz) + " Hz, " + text(binned.resolution_hz) + " Hz, " +
+          std::to_string(binned.segment_length) + ")");
   for (std::size_t i = 0; i < n; ++i) {
     const bool ok = std::isfinite(binned.frequency_hz[i]) && binned.frequency_hz[i] > 0.0 &&
                     std::isfinite(binned.density[i]) && binned.density[i] > 0.0 &&
@@ -292,7 +302,10 @@ PsdReadoff psd_readoff(const Spectrum& binned) {
                        text(binned.frequency_hz[i]) + " Hz, " + text(binned.density[i]) + ", " +
                        text(binned.dof[i]) + ")");
   }
-  const double tau0 = 1.0 / (binned.resolution_hz * static_cast<double>(binned.segment_length));
+  const double tau0 =
+      binned.sample_rate_hz > 0.0
+          ? 1.0 / binned.sample_rate_hz
+          : 1.0 / (binned.resolution_hz * static_cast<double>(binned.segment_length));
 
   // Local slope: least squares over the point and kSlopeHalfWidth neighbours on each side
   // (fewer at the ends).

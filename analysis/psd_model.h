@@ -58,15 +58,16 @@ struct PsdCrossCheck {
 ///
 /// Band: bins with frequency ≥ 3·resolution_hz (the Hann main lobe is ±2 raw bins wide, so
 /// below that the estimate mixes in DC, which the detrend removed, and the steep low-frequency
-/// power of red noise: +14 % at bin 3 for f⁻²) and ≤ f_max_hz. Binned points whose raw bins,
-/// widened by 4 bins (the Blackman–Harris main lobe), contain a model sinusoid are skipped:
-/// a line is not a density.
+/// power of red noise: +14 % at bin 3 for f⁻²; for a multi-rate spectrum resolution_hz is the
+/// deepest level's, that of the lowest bins) and ≤ f_max_hz. Binned points whose raw bins,
+/// widened by 4 bins (the Blackman–Harris main lobe) of their own spacing (bin_resolution_hz
+/// when given), contain a model sinusoid are skipped: a line is not a density.
 ///
 /// Pass rule: with 99 % intervals ~1 % of the bins fall outside by chance, and a correct
 /// model compared on 30–60 bins has two or more outliers in 4–12 % of records; allowing
 /// max(2, ⌊5 % of the compared bins⌋) brings that below ~2.5 %. A wrong level pushes whole
 /// runs of high-dof bins outside, far beyond the allowance.
-/// @param[in] binned log-binned (or raw) Welch spectrum with dof
+/// @param[in] binned log-binned (or raw, or multi-rate) Welch spectrum with dof
 /// @param[in] model  coefficients to test
 /// @param[in] tau0_s sample interval τ0 [s], > 0
 /// @param[in] f_max_hz upper end of the band [Hz], e.g. the sensor's low-pass; ≤ 0 selects
@@ -123,9 +124,10 @@ struct PsdReadoff {
 /// noise below a visible plateau would hide it), and the roll-off is not used for K.
 /// Limitation: white noise followed by a sensor low-pass falling as f⁻² looks the same.
 ///
-/// τ0 for Q is 1/(resolution_hz·segment_length).
-/// @throws ContractViolation when the spectrum is empty, its sizes differ or its resolution is
-///   not set; InputError when a bin's frequency, density or dof is not positive and finite.
+/// τ0 for Q is 1/sample_rate_hz (hand-made spectra without it: 1/(resolution_hz·segment_length)).
+/// @throws ContractViolation when the spectrum is empty, its sizes differ or neither its sample
+///   rate nor its resolution is set; InputError when a bin's frequency, density or dof is not
+///   positive and finite.
 PsdReadoff psd_readoff(const Spectrum& binned);
 
 /// @}

@@ -10,6 +10,7 @@
 
 #include "analysis/confidence.h"
 #include "analysis/edf.h"
+#include "analysis/multirate_psd.h"
 #include "analysis/noise_terms.h"
 #include "common/errors.h"
 #include "models/bias_instability_gm.h"
@@ -218,8 +219,8 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   out.oadev = std::move(curves.oadev);
   out.ohdev = std::move(curves.ohdev);
   progress("deviations", 1);
-  // Nothing below reads the phase: free it before the PSD allocates its segment buffers, so
-  // the two never add up (a 24 h record at 1 kHz has 0.7 GB of phase per channel).
+  // Nothing below reads the phase: free it before the PSD and the intervals (a 24 h record at
+  // 1 kHz has 0.7 GB of phase per channel).
   phase_spans.clear();
   std::vector<std::vector<double>>().swap(phases);
   progress("fit", 2);
@@ -251,12 +252,16 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   }
   out.slope = analysis::slope_readoff(taus, adevs);
   progress("PSD", 3);
-  // Pieces: segments of every piece at one length, averaged together (pieces shorter than a
-  // segment left out); one piece is exactly welch_psd.
+  // Multi-rate Welch straight into log bins (analysis/multirate_psd.h): the deepest level keeps
+  // the resolution of the classic segment length, the others are decimated copies streamed
+  // through short cache-resident segments. Pieces: at every level the segments of every piece
+  // long enough are averaged together; one piece is exactly multirate_psd.
   std::size_t psd_pieces = 0;
-  const analysis::Spectrum raw =
-      analysis::pooled_welch_psd(pieces, 1.0 / tau0_s, options.welch, &psd_pieces);
-  out.psd = analysis::log_bin(raw, options.psd_bins_per_decade);
+  analysis::MultirateOptions psd_options;
+  psd_options.welch = options.welch;
+  psd_options.level_segment_length = options.psd_level_segment_length;
+  psd_options.bins_per_decade = options.psd_bins_per_decade;
+  out.psd = analysis::pooled_multirate_psd(pieces, 1.0 / tau0_s, psd_options, &psd_pieces);
   out.psd_readoff = analysis::psd_readoff(out.psd);
   out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s, 0.4 / tau0_s);
   progress(replicates > 0 ? "bootstrap" : "intervals", 4);

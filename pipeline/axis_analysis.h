@@ -1,7 +1,7 @@
 /// @file
 /// @brief Everything `imunoise analyze` computes for one sensor axis, as pure computation:
-/// OADEV and OHDEV with chi-square intervals, Welch PSD, the weighted NNLS fit of the whole
-/// model (theory.md §4.3) with its parametric-bootstrap intervals, the IEEE-952 and PSD
+/// OADEV and OHDEV with chi-square intervals, multi-rate Welch PSD, the weighted NNLS fit of the
+/// whole model (theory.md §4.3) with its parametric-bootstrap intervals, the IEEE-952 and PSD
 /// read-offs for traceability, the B → Gauss–Markov conversions (§4.4) and the PSD
 /// cross-check (§5.4) — assembled into a models::AxisModel.
 #pragma once
@@ -27,9 +27,13 @@ namespace imunoise::pipeline {
 struct AxisAnalysisOptions {
   double confidence = 0.95;  ///< level of every reported interval
   analysis::TauGridSpec grid = analysis::parse_tau_grid("log:10");  ///< τ grid of the curves
-  analysis::FitOptions fit;      ///< fit settings (tau_min_s 0 = automatic low-pass check)
-  bool auto_low_pass = true;     ///< drop leading τ bent below the white line (§4.3)
-  analysis::WelchOptions welch;  ///< PSD settings
+  analysis::FitOptions fit;   ///< fit settings (tau_min_s 0 = automatic low-pass check)
+  bool auto_low_pass = true;  ///< drop leading τ bent below the white line (§4.3)
+  /// PSD window, overlap and detrend of every level of the multi-rate estimate
+  /// (analysis/multirate_psd.h); welch.segment_length is the classic L₀ that fixes the
+  /// lowest resolution (0 = automatic).
+  analysis::WelchOptions welch;
+  std::size_t psd_level_segment_length = 4096;  ///< L of every level of the multi-rate PSD
   int psd_bins_per_decade = 10;
   int bootstrap_replicates = 200;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
   /// Where the replicates' variances come from (pipeline/bootstrap.h).
@@ -50,7 +54,7 @@ struct AxisAnalysisOptions {
 struct AxisAnalysis {
   analysis::DeviationCurve oadev;
   analysis::DeviationCurve ohdev;
-  analysis::Spectrum psd;  ///< log-binned one-sided PSD
+  analysis::Spectrum psd;  ///< log-binned one-sided PSD (multi-rate, analysis/multirate_psd.h)
   analysis::FitResult fit;
   analysis::SlopeReadoff slope;
   analysis::PsdReadoff psd_readoff;
@@ -67,8 +71,8 @@ AxisAnalysis analyze_axis(const std::string& name, SensorKind kind, std::span<co
 
 /// analyze_axis over the independent gap-free PIECES of one record (`--gaps split`): OADEV
 /// and OHDEV pooled per τ over the pieces (analysis::compute_pooled_deviation: σ² weighted
-/// by the term counts, EDF summed), the Welch PSD pooled over pieces at one segment length
-/// (analysis::pooled_welch_psd), then the fit on the pooled curves as usual. The bootstrap
+/// by the term counts, EDF summed), the multi-rate PSD pooled over pieces level by level
+/// (analysis::pooled_multirate_psd), then the fit on the pooled curves as usual. The bootstrap
 /// simulates one record of the total length — an approximation the fit note states. One
 /// piece is exactly analyze_axis. PIECES must not be empty (ContractViolation).
 AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,

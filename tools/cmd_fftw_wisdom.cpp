@@ -1,5 +1,5 @@
 /// @file
-/// @brief `imunoise fftw-wisdom`: measures FFTW r2c plans for the Welch segment lengths that
+/// @brief `imunoise fftw-wisdom`: measures FFTW r2c plans for the PSD segment lengths that
 /// `analyze` will use and saves them as FFTW wisdom, so that `analyze --fftw-wisdom FILE` (or
 /// IMUNOISE_FFTW_WISDOM=FILE) runs its PSD transforms with a measured plan without measuring.
 /// Prints, per length, the planning time and the time of one transform with the wisdom plan
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/psd.h"
+#include "analysis/multirate_psd.h"
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/atomic_output.h"
@@ -56,8 +56,9 @@ void run_fftw_wisdom(const WisdomArgs& args) {
       throw InputError("--samples: " + std::to_string(n) +
                        " samples is too short for a Welch PSD (at least 16)");
     }
-    lengths.emplace(analysis::automatic_segment_length(n),
-                    "the automatic length for " + std::to_string(n) + " samples");
+    // The one FFT length analyze's multi-rate PSD uses for a record of n samples.
+    lengths.emplace(analysis::multirate_plan(n).segment_length,
+                    "the PSD length for " + std::to_string(n) + " samples");
   }
   for (std::size_t l : args.lengths) {
     if (l < 2 || l > static_cast<std::size_t>(INT_MAX)) {
@@ -124,8 +125,8 @@ void register_fftw_wisdom_command(CLI::App& app) {
       "measuring; prints the planning time and the transform time with and without it");
   cmd->add_option("--samples", args->samples,
                   "record lengths [samples] to plan for (repeat or N1,N2,...): each gives the "
-                  "automatic Welch segment length of analyze (largest power of two <= N/8, at "
-                  "least 16)")
+                  "FFT length of analyze's PSD (the largest power of two <= N/8, at least 16, "
+                  "capped at 4096: longer records are decimated, not transformed longer)")
       ->delimiter(',');
   cmd->add_option("--length", args->lengths, "explicit segment lengths L (repeat or L1,L2,...)")
       ->delimiter(',');
