@@ -13,7 +13,11 @@
 # Environment: IMUNOISE_BIN (default build/release/tools/imunoise, which tools/test builds),
 # IMUNOISE_BENCH_DIR (default /tmp/imunoise-bench), IMUNOISE_BENCH_CSV_MAX (largest sample
 # count also benchmarked from CSV; default 40000000 — 24 h at 1 kHz as CSV is 11 GB),
-# IMUNOISE_BENCH_BOOTSTRAP (default 0), IMUNOISE_BENCH_THREADS (default 0 = all cores).
+# IMUNOISE_BENCH_BOOTSTRAP (default 0: none; N ≥ 2 adds a run with the reference bootstrap of N
+# simulated records), IMUNOISE_BENCH_THREADS (default 0 = all cores).
+# The binary recording is analysed twice side by side: with the default intervals (the
+# variance-distribution draws) and without intervals (--interval-draws 0), and the ratio of
+# the two wall times is printed (issue 21: at most 1.5).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BIN="${IMUNOISE_BIN:-$ROOT/build/release/tools/imunoise}"
@@ -87,13 +91,14 @@ for c in "${CASES[@]}"; do
     fi
     inputs+=("$base.csv")
   fi
-  for input in "${inputs[@]}"; do
-    kind=${input##*.}
-    cat "$input" >/dev/null  # page cache warm
-    out="$WORK/out_${duration}_${rate_hz}hz_$kind"
+  # analyze_run INPUT LABEL OUT FLAGS...: one timed analyze -v, its table row; sets WALL.
+  analyze_run() {
+    local input=$1 label=$2 out=$3
+    shift 3
+    local kind=${input##*.}
     rm -rf "$out"
-    timed "$out.log" "$BIN" analyze "$input" -o "$out" --bootstrap "$BOOTSTRAP" \
-      --threads "$THREADS" -v
+    timed "$out.log" "$BIN" analyze "$input" -o "$out" --threads "$THREADS" -v "$@"
+    local file_bytes read_s stages v s ratio
     file_bytes=$(stat -c %s "$input")
     read_s=$(stage "$out.log" read)
     stages="read $read_s ($(rate "$file_bytes" "$read_s") of $kind file)"
@@ -105,7 +110,24 @@ for c in "${CASES[@]}"; do
       stages+=", $s $(stage "$out.log" "$s")"
     done
     ratio=$(awk -v r="$RSS_MB" -v d="$data_mb" 'BEGIN { printf "%.2f", r / d }')
-    echo "| $c ($samples samples × 6, $data_mb MiB) | analyze $kind, bootstrap $BOOTSTRAP | $WALL | $CPU | $RSS_MB | $ratio | $stages |"
+    echo "| $c ($samples samples × 6, $data_mb MiB) | analyze $kind, $label | $WALL | $CPU | $RSS_MB | $ratio | $stages |"
+  }
+  for input in "${inputs[@]}"; do
+    kind=${input##*.}
+    cat "$input" >/dev/null  # page cache warm
+    out="$WORK/out_${duration}_${rate_hz}hz_$kind"
+    if [ "$kind" = imnb ]; then
+      analyze_run "$input" "no intervals (--interval-draws 0)" "${out}_no_intervals" \
+        --interval-draws 0
+      wall_none=$WALL
+      analyze_run "$input" "default intervals" "$out"
+      echo "| $c | default / no intervals, wall | $(awk -v a="$WALL" -v b="$wall_none" 'BEGIN { printf "%.2f", a / b }') | | | | |"
+      if [ "$BOOTSTRAP" -ge 2 ]; then
+        analyze_run "$input" "bootstrap $BOOTSTRAP" "${out}_bootstrap" --bootstrap "$BOOTSTRAP"
+      fi
+    else
+      analyze_run "$input" "default intervals" "$out"
+    fi
   done
   out="$WORK/out_${duration}_${rate_hz}hz_imnb"
   timed "$out.export.log" "$BIN" export "$out/model.yaml" --to all -o "$out/exports" --quiet
