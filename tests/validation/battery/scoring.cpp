@@ -146,9 +146,8 @@ const std::array<std::regex, kPhenomena.size()>& finding_patterns() {
       std::regex(R"(outlier|spike)", flags),
       std::regex(R"(low-?pass|roll-?off|filter corner|bandwidth)", flags),
       std::regex(R"(decimat|without averaging)", flags),
-      std::regex(
-          R"(stamp quantiz|quantized (time )?stamp|stamps? .*quantized|jitter|mean interval)",
-          flags),
+      // Quantized stamps named as such (a plain "time-stamp jitter" line does not count).
+      std::regex(R"((stamp|time).{0,40}quantiz|quantiz.{0,40}(stamp|time)|mean interval)", flags),
       // The rate LSB, not that of an extra column ("temperature: output quantized, LSB …").
       std::regex(R"(^(?!temperature:).*(\blsb\b|output quantiz))", flags),
       std::regex(R"(spectral line|\blines? (at|found)|sinusoid)", flags),
