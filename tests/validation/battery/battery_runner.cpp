@@ -130,11 +130,19 @@ void write_recording(const BatteryCase& c, const GeneratedRecording& g, const fs
     h.rate_hz = c.spec.rate_hz;
   }
   for (std::size_t ch = 0; ch < 6; ++ch) {
-    const std::string unit = c.truth[ch].gyro ? "rad/s" : "m/s^2";
-    h.channels.push_back({c.truth[ch].name, unit, {}, c.truth[ch].name, unit, false});
+    const bool gyro = c.truth[ch].gyro;
+    imunoise::pipeline::Channel channel;
+    channel.name = channel.source_column = c.truth[ch].name;
+    channel.kind = gyro ? imunoise::SensorKind::gyro : imunoise::SensorKind::accel;
+    channel.source_unit = gyro ? "rad/s" : "m/s^2";
+    h.channels.push_back(channel);
   }
-  if (!g.temperature_degc.empty())
-    h.channels.push_back({"temperature", "", {}, "temperature", "degC", false});
+  if (!g.temperature_degc.empty()) {
+    imunoise::pipeline::Channel channel;  // an extra column: no kind, unit "" (as in file)
+    channel.name = channel.source_column = "temperature";
+    channel.source_unit = "degC";
+    h.channels.push_back(channel);
+  }
   io::BinaryRecordingWriter writer(path.string(), h);
   std::size_t column = 0;
   if (c.write_stamps) writer.append(column++, g.time_s);
