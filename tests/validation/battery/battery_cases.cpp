@@ -70,6 +70,14 @@ constexpr std::array<double, 6> kWarmupInB = {10.0, -8.0, 6.0, -10.0, 8.0, 12.0}
 const std::array<const char*, 6> kChannelNames = {"gyro_x",  "gyro_y",  "gyro_z",
                                                   "accel_x", "accel_y", "accel_z"};
 
+/// The generator seed of (CLASS, SEED): the class name's FNV-1a hash mixed with the seed, so
+/// that no two classes share a random stream (their rows pool as independent samples).
+std::uint64_t class_seed(const std::string& class_name, std::uint64_t seed) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char ch : class_name) h = (h ^ ch) * 0x100000001b3ULL;
+  return h ^ (seed * 0x9e3779b97f4a7c15ULL);
+}
+
 double per_sample_sigma(const ChannelTruth& t, double tau0_s) {
   return t.white_noise / std::sqrt(tau0_s);
 }
@@ -81,7 +89,7 @@ BatteryCase base_case(const std::string& class_name, const Grade& g, BatterySize
   c.class_name = class_name;
   c.grade = g.name;
   c.seed = seed;
-  c.spec.seed = seed;
+  c.spec.seed = class_seed(class_name, seed);
   double rate = g.rate_hz, duration = g.duration_s;
   if (size == BatterySize::reduced) {
     rate = std::min(rate, 100.0);
@@ -225,7 +233,7 @@ BatteryCase make_case(const std::string& name, BatterySize size, std::uint64_t s
   }
   if (name == "lines") {
     c.description = "spectral lines 0.02-20 Hz (SNR 10-100 in a T/16 Welch bin)";
-    NormalStream phases(stream_seed(seed, 0, StreamTerm::sinusoid_phase, 0));
+    NormalStream phases(stream_seed(c.spec.seed, 0, StreamTerm::sinusoid_phase, 0));
     for (const LinePlan& l : kLines) {
       ChannelTruth& t = c.truth[static_cast<std::size_t>(l.channel)];
       const double continuum = truth_psd(t, l.frequency_hz, tau0);

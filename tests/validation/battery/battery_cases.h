@@ -54,7 +54,7 @@ struct BatteryCase {
   std::string class_name;
   std::string grade;        ///< consumer, industrial, tactical
   std::string description;  ///< one line for the tables
-  std::uint64_t seed = 0;
+  std::uint64_t seed = 0;   ///< the battery seed (spec.seed is derived from it and the class)
   RecordingSpec spec;
   std::array<ChannelTruth, 6> truth;
   std::vector<Phenomenon> phenomena;
@@ -67,7 +67,8 @@ enum class BatterySize { full, reduced };
 /// The class names, in table order.
 std::vector<std::string> battery_classes();
 
-/// The case of class NAME at SIZE for SEED (seeds 1, 2, … give independent recordings).
+/// The case of class NAME at SIZE for SEED (seeds 1, 2, … give independent recordings; the
+/// generator seed mixes in the class name, so classes never share a stream either).
 /// @throws std::invalid_argument for an unknown class.
 BatteryCase make_case(const std::string& name, BatterySize size, std::uint64_t seed);
 
