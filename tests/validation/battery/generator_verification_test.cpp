@@ -443,7 +443,7 @@ int main(int argc, char** argv) {
       "\n| case | m | expected AVAR | mean OAVAR / expected | tolerance (4 SE) / expected |\n");
   std::printf("|---|---|---|---|---|\n");
   for (const auto& r : rows()) {
-    std::printf("| %s | %zu | %.4e | %.5f | %.5f |\n", r.name.c_str(), r.m, r.expected,
+    std::printf("| %s | %zu | %.4e | %.6f | %.3e |\n", r.name.c_str(), r.m, r.expected,
                 r.mean / r.expected, r.tolerance / r.expected);
   }
   return result;
