@@ -58,7 +58,7 @@ struct BatteryCase {
   RecordingSpec spec;
   std::array<ChannelTruth, 6> truth;
   std::vector<Phenomenon> phenomena;
-  bool write_stamps = false;  ///< write the time column (else a fixed rate)
+  bool write_stamps = false;  ///< write the stamps (as CSV with a time column), else a fixed rate
 };
 
 /// Sizes: `full` is the closing-note battery, `reduced` the ctest one (rate ≤ 100 Hz, 20 min).

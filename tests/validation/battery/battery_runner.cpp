@@ -19,6 +19,7 @@
 /// --acceptance exits 1 unless every target of summary.md's "Acceptance" table is met.
 #include <sys/wait.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -110,25 +111,52 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-/// Writes the generated recording as .imnb: the six channels (+ temperature), with the time
-/// column when the case has quantized stamps (then the header's nominal period is the median
-/// interval, as a CSV reader would take it), else the fixed rate.
+/// The file a case is written to: CSV when it has quantized stamps (so that `analyze` derives
+/// the sample period from the stamps by its own rule, as for a user's CSV; an .imnb header
+/// would carry a period chosen by the writer), else .imnb.
+fs::path recording_path(const BatteryCase& c, const fs::path& work, const std::string& tag) {
+  return work / (tag + (c.write_stamps ? ".csv" : ".imnb"));
+}
+
+/// Writes the stamps and the six channels as CSV with imunoise's default column names,
+/// numbers in shortest round-trip form.
+void write_csv_recording(const BatteryCase& c, const GeneratedRecording& g, const fs::path& path) {
+  std::ofstream out(path);
+  out << "time_s";
+  for (const ChannelTruth& t : c.truth)
+    out << ',' << t.name << (t.gyro ? "_rad_per_s" : "_m_per_s2");
+  out << '\n';
+  char buf[32];
+  const auto put = [&](double v) {
+    const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+    out.write(buf, end - buf);
+  };
+  for (std::size_t k = 0; k < c.spec.samples; ++k) {
+    put(g.time_s[k]);
+    for (const std::vector<double>& values : g.channels) {
+      out << ',';
+      put(values[k]);
+    }
+    out << '\n';
+  }
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+/// Writes the generated recording as .imnb at the fixed rate: the six channels (+ temperature
+/// as an extra column), or as CSV (write_csv_recording) when the case has stamps.
 void write_recording(const BatteryCase& c, const GeneratedRecording& g, const fs::path& path) {
+  if (c.write_stamps) {
+    write_csv_recording(c, g, path);
+    return;
+  }
   namespace io = imunoise::io;
   io::BinaryRecordingHeader h;
   h.source_path = "battery:" + c.class_name + ":" + std::to_string(c.seed);
   h.created_by = std::string(io::kBinaryCreatedBy);
   h.sample_count = c.spec.samples;
-  h.has_time = c.write_stamps;
-  if (c.write_stamps) {
-    std::vector<double> dt;
-    for (std::size_t k = 1; k < g.time_s.size(); ++k) dt.push_back(g.time_s[k] - g.time_s[k - 1]);
-    std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-    h.sample_period_s = dt[dt.size() / 2];
-  } else {
-    h.sample_period_s = g.sample_period_s;
-    h.rate_hz = c.spec.rate_hz;
-  }
+  h.has_time = false;
+  h.sample_period_s = g.sample_period_s;
+  h.rate_hz = c.spec.rate_hz;
   for (std::size_t ch = 0; ch < 6; ++ch) {
     const bool gyro = c.truth[ch].gyro;
     imunoise::pipeline::Channel channel;
@@ -145,7 +173,6 @@ void write_recording(const BatteryCase& c, const GeneratedRecording& g, const fs
   }
   io::BinaryRecordingWriter writer(path.string(), h);
   std::size_t column = 0;
-  if (c.write_stamps) writer.append(column++, g.time_s);
   for (const std::vector<double>& values : g.channels) writer.append(column++, values);
   if (!g.temperature_degc.empty()) writer.append(column++, g.temperature_degc);
   writer.commit();
@@ -166,7 +193,7 @@ RecordingResult run_case(const Options& o, const BatteryCase& c, const fs::path&
   r.duration_s = static_cast<double>(c.spec.samples) / c.spec.rate_hz;
   r.phenomena = c.phenomena;
   const std::string tag = c.class_name + "_seed" + std::to_string(c.seed);
-  const fs::path rec = work / (tag + ".imnb");
+  const fs::path rec = recording_path(c, work, tag);
   const fs::path dir = work / tag;
   fs::remove_all(dir);
   auto start = Clock::now();
