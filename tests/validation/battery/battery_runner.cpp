@@ -1,18 +1,19 @@
 /// @file
 /// @brief The validation battery's runner (issues 20 and 21, docs/validation.md): for the
 /// selected classes and seeds it generates each recording with the independent generator,
-/// writes it as an imunoise binary recording (.imnb, io/binary_recording.h — I/O only), runs
-/// the real CLI `imunoise analyze REC -o DIR` with default flags plus any given after `--`,
-/// reads DIR/model.yaml (io/noise_model_yaml.h) and scores it against the truth. Writes
-/// rows.csv, recordings.csv and summary.md to --out.
+/// writes it as an imunoise binary recording (.imnb, io/binary_recording.h — I/O only; the
+/// class with quantized stamps as CSV), runs the real CLI `imunoise analyze REC -o DIR` with
+/// default flags plus any given after `--`, reads DIR/model.yaml (io/noise_model_yaml.h) and scores
+/// it against the truth. Writes rows.csv, recordings.csv and summary.md to --out.
 ///
 ///   battery_runner [--size full|reduced] [--classes all|a,b,…] [--seeds N] [--first-seed S]
 ///                  [--out DIR] [--imunoise PATH] [--keep] [--check] [--acceptance]
 ///                  [--describe]
 ///                  [-- ANALYZE_FLAGS…]
 ///
-/// Full run (closing-note figures, a few hours on 2 cores): battery_runner --size full
-///   --seeds 20 --out battery_full
+/// Full run (closing-note figures; about 25 min on 2 cores with the default intervals of main at
+/// e7bd791, about 3.4 h with `-- --bootstrap 50`):
+///   battery_runner --size full --seeds 20 --out battery_full
 /// Reduced run (ctest, label validation): battery_runner --size reduced --seeds 1 --check
 /// --check exits 1 when an analysis fails or a truth row is left unscored; it does not apply
 /// the acceptance targets of issue 20 (main does not meet them yet: see docs/validation.md);
