@@ -663,6 +663,15 @@ pipeline::Recording read_binary_recording(const std::string& path, const BinaryR
     throw byte_error(path, layout.column_offset(0),
                      "the time stamps never increase (cannot estimate the sample rate)");
   }
+  if (h.has_time && timing.median_interval_s > 0.0) {
+    // The analysis takes the header's period (the writer's, docs/binary-format.md), so the
+    // report states that one: "from the mean" only when the header is the stamps' mean.
+    timing.period_from_mean = timing.period_from_mean &&
+                              std::fabs(rec.sample_period_s - timing.mean_interval_s) <=
+                                  pipeline::kPeriodFromMeanThreshold * timing.median_interval_s;
+    timing.sample_period_s = rec.sample_period_s;
+    timing.rate_hz = 1.0 / rec.sample_period_s;
+  }
   rec.report.samples = static_cast<std::int64_t>(n);
   rec.report.timing = std::move(timing);
   rec.report.non_finite_dropped = h.non_finite_dropped;

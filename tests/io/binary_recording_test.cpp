@@ -206,6 +206,29 @@ TEST(BinaryRecording, RoundTripWithTimeAndExtraChannelIsBitIdentical) {
   EXPECT_DOUBLE_EQ(back.report.channels[6].max, 20.999);
 }
 
+TEST(BinaryRecording, ReportStatesTheHeaderPeriodTheAnalysisUses) {
+  // Stamps 0.10, 0.10, 0.11 s apart: the mean interval differs from the median by 3 %. The
+  // reader takes the header's period, so the report says "from the mean" only when the header
+  // holds the mean.
+  pipeline::Recording rec = awkward_recording(300);
+  rec.time_s.assign(1, 0.0);
+  for (std::size_t i = 1; i < 300; ++i)
+    rec.time_s.push_back(rec.time_s.back() + (i % 3 == 0 ? 0.11 : 0.10));
+  const pipeline::TimingReport stamps = pipeline::analyze_timing(rec.time_s);
+  ASSERT_TRUE(stamps.period_from_mean);
+  const auto dir = test::make_temp_dir("binrec_period");
+  for (const bool header_is_mean : {false, true}) {
+    rec.sample_period_s = header_is_mean ? stamps.mean_interval_s : stamps.median_interval_s;
+    const auto path = dir / (header_is_mean ? "mean.imnb" : "median.imnb");
+    write_binary_recording(path.string(), rec);
+    const pipeline::Recording back = read_binary_recording(path.string());
+    EXPECT_EQ(back.sample_period_s, rec.sample_period_s);
+    EXPECT_EQ(back.report.timing.sample_period_s, rec.sample_period_s);
+    EXPECT_EQ(back.report.timing.period_from_mean, header_is_mean);
+    EXPECT_EQ(back.report.timing.rate_hz, 1.0 / rec.sample_period_s);
+  }
+}
+
 TEST(BinaryRecording, ThreadCountChangesNeitherTheRecordNorTheReport) {
   // Columns are read in parallel (pread, 1 MiB chunks) and the sampling checks run beside the
   // timing checks: 300 000 samples span three chunks per column.
