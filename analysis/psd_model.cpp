@@ -51,11 +51,16 @@ void check_model(const NoiseCoefficients& model, double f_hz, double tau0_s) {
 
 /// @name The S₁ rows of theory.md §5.3 (one-sided, §1.3 coefficients)
 /// @{
+/// Q in its sampled form: the rate samples are differences of a white angle sequence of
+/// variance Q² over τ0, so S₁ = 2·|1 − e^{−i2πfτ0}|²·Q²τ0/τ0² = 8 sin²(πfτ0)·Q²/τ0 on
+/// [0, 1/(2τ0)]. It is theory.md §4.1's continuous (2πf)²τ0Q² (doubled to one-sided) where
+/// fτ0 ≪ 1 and 4/π² = 0.405 of it at Nyquist, where the continuous law made a complete model
+/// fail its cross-check on quantized angle increments (issue 20). With the sampled AVAR kernel
+/// it integrates to 3Q²/τ² exactly.
 double quantization_psd(double q, double f, double tau0) {
-  // S_Ω = (2πf)²τ0Q² up to the hardware cut-off 1/(2τ0) (§4.1), doubled to one-sided.
   if (f > 0.5 / tau0) return 0.0;
-  const double w = kTwoPi * f;
-  return 2.0 * w * w * tau0 * q * q;
+  const double s = std::sin(kPi * f * tau0);
+  return 8.0 * s * s * q * q / tau0;
 }
 double white_psd(double n) { return 2.0 * n * n; }
 double flicker_psd(double b, double f) { return b * b / (kPi * f); }
@@ -74,8 +79,10 @@ double gauss_markov_psd(const GaussMarkov& gm, double f) {
 double squared_coefficient(int slope, double f, double s1, double tau0) {
   const double w = kTwoPi * f;
   switch (slope) {
-    case 2:
-      return s1 / (2.0 * tau0 * w * w);  // Q² = S₁/(2τ0(2πf)²)
+    case 2: {
+      const double s = std::sin(kPi * f * tau0);  // Q² = S₁τ0/(8 sin²(πfτ0)), sampled form
+      return s1 * tau0 / (8.0 * s * s);
+    }
     case 0:
       return 0.5 * s1;  // N² = S₁/2
     case -1:

@@ -415,8 +415,10 @@ TEST(PsdModel, IntegratesToTheAvarClosedForms) {
 }
 
 TEST(PsdModel, QuantizationIntegratesToThreeQSquaredOverTauSquared) {
-  // With the f_s/2 cut-off and τ = mτ0, 2∫₀^{f_s/2} 2(2πf)²τ0Q² sin⁴(πfτ)/(πfτ)² df
-  // = (16τ0Q²/τ²)·∫₀^{1/2τ0} sin⁴(πfmτ0) df = (16τ0Q²/τ²)(3/8)/(2τ0) = 3Q²/τ² exactly.
+  // The sampled Q law S₁ = 8 sin²(πfτ0)Q²/τ0 with the AVAR kernel of τ0-spaced samples,
+  // σ²(m) = 2∫₀^{f_s/2} S₁ sin⁴(πfmτ0)/(m² sin²(πfτ0)) df
+  //       = (16Q²/(τ0m²))·∫₀^{1/2τ0} sin⁴(πfmτ0) df = (16Q²/(τ0m²))(3/8)/(2τ0) = 3Q²/τ² exactly,
+  // the AVAR of white angle noise of σ = Q (theory.md §4.1).
   const double tau0 = 0.01, q = 1e-4;
   NoiseCoefficients model;
   model.quantization = q;
@@ -428,13 +430,21 @@ TEST(PsdModel, QuantizationIntegratesToThreeQSquaredOverTauSquared) {
     double sum = 0.0;
     for (int i = 1; i <= steps; ++i) {  // S₁(0) = 0: start at the first step
       const double f = i * h;
-      const double x = kPi * f * tau;
       const double weight = i == steps ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-      sum += weight * model_psd_one_sided(model, f, tau0) * std::pow(std::sin(x), 4) / (x * x);
+      const double kernel = std::pow(std::sin(kPi * f * m * tau0), 4) /
+                            (m * m * std::pow(std::sin(kPi * f * tau0), 2));
+      sum += weight * model_psd_one_sided(model, f, tau0) * kernel;
     }
     EXPECT_NEAR(2.0 * sum * h / 3.0 / (3.0 * q * q / (tau * tau)), 1.0, 1e-9) << m;
   }
   EXPECT_EQ(model_psd_one_sided(model, 0.5 / tau0 * 1.001, tau0), 0.0);
+  // Where fτ0 ≪ 1 it is theory.md's continuous 2(2πf)²τ0Q²; at Nyquist 4/π² of it.
+  const double f_low = 0.01 / tau0, w_low = 2.0 * kPi * f_low;
+  EXPECT_NEAR(model_psd_one_sided(model, f_low, tau0) / (2.0 * w_low * w_low * tau0 * q * q), 1.0,
+              1e-3);
+  const double w_nyq = kPi / tau0;
+  EXPECT_NEAR(model_psd_one_sided(model, 0.5 / tau0, tau0) / (2.0 * w_nyq * w_nyq * tau0 * q * q),
+              4.0 / (kPi * kPi), 1e-12);
 }
 
 TEST(PsdModel, TermsMatchTheTheoryTableAndSumToTheTotal) {
@@ -449,7 +459,8 @@ TEST(PsdModel, TermsMatchTheTheoryTableAndSumToTheTotal) {
   const double f = 3.0, tau0 = 0.01;
   const PsdTerms t = model_psd_terms(model, f, tau0);
   const double w = 2.0 * kPi * f;
-  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::quantization], 2.0 * w * w * tau0 * 1e-8);
+  EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::quantization],
+                   8.0 * std::pow(std::sin(kPi * f * tau0), 2) * 1e-8 / tau0);
   EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::white_noise], 2.0 * 4e-6);
   EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::bias_instability], 25e-8 / (kPi * f));
   EXPECT_DOUBLE_EQ(t.terms[NoiseTerm::random_walk], 9e-10 / (2.0 * kPi * kPi * f * f));
@@ -644,6 +655,45 @@ TEST(PsdModel, RejectsBadArgumentsWithAClearMessage) {
   expect_throw_containing<AnalysisError>([&] { cross_check_psd(binned, model, 0.01, 1e-9); },
                                          "no spectrum bin between");
   expect_throw_containing<ContractViolation>([&] { psd_readoff(Spectrum{}); }, "spectrum is empty");
+}
+
+}  // namespace
+}  // namespace imunoise::analysis
+
+namespace imunoise::analysis {
+namespace {
+
+TEST(PsdModel, QuantizedAngleIncrementsPassTheCrossCheckUpToNyquist) {
+  // Angle increments of a white angle error σ = Q (theory.md §4.1: Q = Δ/√12 of a quantizer),
+  // simulated here exactly (std::mt19937_64), 2^20 samples at 400 Hz: the measured log-binned
+  // PSD follows the sampled law in every bin up to Nyquist — the continuous (2πf)²τ0Q² would
+  // sit 2.5x above the top bins (4/π² = 0.405 at Nyquist).
+  const double tau0 = 1.0 / 400.0, q = 2e-6;
+  std::mt19937_64 rng(20);
+  std::normal_distribution<double> normal;
+  std::vector<double> rate(1u << 20);
+  double previous = q * normal(rng);
+  for (double& r : rate) {
+    const double angle = q * normal(rng);
+    r = (angle - previous) / tau0;
+    previous = angle;
+  }
+  const Spectrum binned = log_bin(welch_psd(rate, 1.0 / tau0), 10);
+  NoiseCoefficients model;
+  model.quantization = q;
+  const PsdCrossCheck check = cross_check_psd(binned, model, tau0, 0.5 / tau0);
+  EXPECT_TRUE(check.pass) << check.bins_outside << " of " << check.bins_compared;
+  EXPECT_GT(check.f_max_hz, 0.45 / tau0);
+  // The bins above f_s/4 (hundreds of dof each) within 5 standard deviations √(2/ν) of the
+  // sampled law, and the top one clearly below the continuous law.
+  for (std::size_t i = 0; i < binned.frequency_hz.size(); ++i) {
+    const double f = binned.frequency_hz[i];
+    if (f < 0.25 / tau0) continue;
+    const double ratio = binned.density[i] / model_psd_one_sided(model, f, tau0);
+    EXPECT_NEAR(ratio, 1.0, 5.0 * std::sqrt(2.0 / binned.dof[i])) << f << " Hz";
+  }
+  const double f_top = binned.frequency_hz.back(), w_top = 2.0 * kPi * f_top;
+  EXPECT_LT(binned.density.back() / (2.0 * w_top * w_top * tau0 * q * q), 0.8);
 }
 
 }  // namespace
