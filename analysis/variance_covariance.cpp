@@ -109,17 +109,23 @@ class LagSums {
     b_max = f2_.offset[static_cast<std::size_t>(f2_.taps - 1)];
     // B and GM decay beyond the taps (as 1/l² and e^{−l·τ0/T_c}): geometric nodes out to 256
     // spans (R12² is then below 1e−9 of its peak) or 30 correlation times.
+    // Beyond that the sum is cut: the rest is below 1e−7 of it, and R12 there is the difference
+    // of terms ~(l/span)⁴ larger than itself, which double precision cannot resolve (summed
+    // over a long record's 10⁷ lags, that rounding was what the variance picked up).
     const bool tails = model_.bias_instability > 0.0 || !model_.gauss_markov.empty();
+    std::int64_t tail = 0;  // the lags summed beyond the taps on each side
     if (tails) {
       const std::int64_t span = a_max + b_max;
       double reach = 256.0 * static_cast<double>(span);
       for (const GaussMarkov& gm : model_.gauss_markov) {
         reach = std::max(reach, 30.0 * gm.tau_c_s / tau0_s_);
       }
-      for (double d = static_cast<double>(span); d <= reach; d *= 2.0) {
-        const auto step = static_cast<std::int64_t>(std::min(d, 4e18));
-        nodes.push_back(a_max + step);
-        nodes.push_back(-b_max - step);
+      reach = std::min(reach, static_cast<double>(l_max - l_min));
+      for (double d = static_cast<double>(span);; d *= 2.0) {
+        tail = static_cast<std::int64_t>(std::min(d, reach));
+        nodes.push_back(a_max + tail);
+        nodes.push_back(-b_max - tail);
+        if (d >= reach) break;
       }
     }
     for (std::int64_t& n : nodes) n = std::clamp(n, l_min, l_max);
@@ -128,9 +134,9 @@ class LagSums {
 
     std::array<double, 2> total{0.0, 0.0};
     // Without tails R12 vanishes outside [−b_max, a_max] (N, K: polynomials the filters
-    // annihilate; Q: only where taps meet).
-    const std::int64_t lo = tails ? l_min : std::max(l_min, -b_max);
-    const std::int64_t hi = tails ? l_max : std::min(l_max, a_max);
+    // annihilate; Q: only where taps meet); with them the sum ends `tail` lags further out.
+    const std::int64_t lo = std::max(l_min, -b_max - tail);
+    const std::int64_t hi = std::min(l_max, a_max + tail);
     for (std::size_t i = 0; i + 1 < nodes.size(); ++i) {
       const std::int64_t p = nodes[i], q = nodes[i + 1];
       if (q <= lo || p >= hi) continue;

@@ -1,6 +1,7 @@
 #include "pipeline/bootstrap.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -89,15 +90,25 @@ class VarianceDraw {
       }
     }
     // Neighbouring τ of a dense grid correlate to within rounding of 1: a little ridge keeps
-    // the factor real (1e−12 of the diagonal changes no draw visibly).
-    for (double ridge = 0.0;; ridge = ridge == 0.0 ? 1e-12 : ridge * 10.0) {
+    // the factor real (1e−12 of the diagonal changes no draw visibly). Should rounding still
+    // leave it indefinite, the nearest positive definite matrix (eigenvalues clipped, unit
+    // diagonal restored) is drawn from, rather than the analysis failing.
+    for (double ridge = 0.0; ridge <= 1e-9; ridge = ridge == 0.0 ? 1e-12 : ridge * 10.0) {
       Eigen::LLT<Eigen::MatrixXd> llt(correlation + ridge * Eigen::MatrixXd::Identity(n, n));
       if (llt.info() == Eigen::Success) {
         factor_ = llt.matrixL();
-        break;
+        return;
       }
-      IMUNOISE_EXPECT(ridge < 1e-3, "bootstrap: the variance correlation is not positive definite");
     }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(correlation);
+    const double floor = 1e-10 * std::max(1.0, eigen.eigenvalues().maxCoeff());
+    Eigen::MatrixXd clipped = eigen.eigenvectors() *
+                              eigen.eigenvalues().cwiseMax(floor).asDiagonal() *
+                              eigen.eigenvectors().transpose();
+    const Eigen::VectorXd scale = clipped.diagonal().cwiseSqrt().cwiseInverse();
+    clipped = scale.asDiagonal() * clipped * scale.asDiagonal();
+    factor_ =
+        Eigen::LLT<Eigen::MatrixXd>(clipped + floor * Eigen::MatrixXd::Identity(n, n)).matrixL();
   }
 
   /// One draw of the OAVAR estimates into AVAR (size of USED_M), from the normals of NORMAL.
