@@ -99,7 +99,7 @@ for c in "${CASES[@]}"; do
     rm -rf "$out"
     timed "$out.log" "$BIN" analyze "$input" -o "$out" --threads "$THREADS" -v "$@"
     local file_bytes read_s stages v s ratio
-    file_bytes=$(stat -c %s "$input")
+    file_bytes=$(stat -L -c %s "$input")
     read_s=$(stage "$out.log" read)
     stages="read $read_s ($(rate "$file_bytes" "$read_s") of $kind file)"
     for s in deviations PSD fit bootstrap intervals; do
