@@ -85,8 +85,12 @@ class VarianceDraw {
     Eigen::MatrixXd correlation(n, n);
     for (Eigen::Index i = 0; i < n; ++i) {
       for (Eigen::Index j = 0; j < n; ++j) {
-        correlation(i, j) = moments_.covariance(i, j) /
-                            std::sqrt(moments_.covariance(i, i) * moments_.covariance(j, j));
+        // A point with no variance under the model (a deterministic term alone) is drawn at
+        // its expectation, uncorrelated.
+        const double vi = moments_.covariance(i, i), vj = moments_.covariance(j, j);
+        correlation(i, j) = vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
+                                ? moments_.covariance(i, j) / std::sqrt(vi * vj)
+                                : (i == j ? 1.0 : 0.0);
       }
     }
     // Neighbouring τ of a dense grid correlate to within rounding of 1: a little ridge keeps
@@ -119,8 +123,9 @@ class VarianceDraw {
     const Eigen::VectorXd z = factor_.triangularView<Eigen::Lower>() * u;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double nu = moments_.edf[static_cast<std::size_t>(i)];
-      avar[static_cast<std::size_t>(i)] =
-          moments_.expected[static_cast<std::size_t>(i)] * chi_square_over_dof(z(i), nu);
+      // EDF 0: no variance under the model (analysis::VarianceCovariance), the expectation.
+      avar[static_cast<std::size_t>(i)] = moments_.expected[static_cast<std::size_t>(i)] *
+                                          (nu > 0.0 ? chi_square_over_dof(z(i), nu) : 1.0);
     }
   }
 

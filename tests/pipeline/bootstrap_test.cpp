@@ -94,3 +94,34 @@ TEST(Bootstrap, VarianceDistributionDrawDoesNotDependOnTheThreads) {
 
 }  // namespace
 }  // namespace imunoise::pipeline
+
+namespace imunoise::pipeline {
+namespace {
+
+TEST(Bootstrap, VarianceDistributionDrawOfADeterministicModelIsItsExpectation) {
+  // A fit of a ramp alone: no variance under the model at any τ (EDF 0), so every draw is the
+  // expectation and the refit returns the fitted ramp; nothing fails on the 0/0 correlation.
+  std::vector<analysis::FitPoint> points;
+  std::vector<std::int64_t> m;
+  const double tau0 = 0.1, ramp = 1e-6;
+  for (std::int64_t k = 1; k <= 1000; k *= 2) {
+    const double tau = static_cast<double>(k) * tau0;
+    points.push_back({tau, 0.5 * ramp * ramp * tau * tau, 50.0});
+    m.push_back(k);
+  }
+  analysis::FitOptions fit_options;
+  fit_options.allow_terms = {false, false, false, false, true};
+  const analysis::FitResult fit = analysis::fit_noise_model(points, fit_options);
+  ASSERT_TRUE(fit.terms[static_cast<std::size_t>(NoiseTerm::ramp)].identified);
+  BootstrapOptions options;
+  options.source = ReplicateSource::variance_distribution;
+  options.replicates = 20;
+  const BootstrapResult r = bootstrap_fit(fit, points, m, 100000, tau0, fit_options, options);
+  EXPECT_EQ(r.replicates, 20);
+  const Interval& i = r.terms[static_cast<std::size_t>(NoiseTerm::ramp)];
+  EXPECT_NEAR(i.low / ramp, 1.0, 1e-6);
+  EXPECT_NEAR(i.high / ramp, 1.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace imunoise::pipeline
