@@ -53,4 +53,26 @@ void append_sample_temperature(ImuSampleColumns& samples, std::optional<double> 
 Recording recording_from_imu_samples(ImuSampleColumns samples, const std::string& source_path,
                                      const std::string& channel);
 
+/// The samples of one topic of a robotics log (a ROS bag, an MCAP or rosbag2 file, a PX4 ULog),
+/// rates in SI with integer nanosecond stamps.
+struct StampedImuColumns {
+  std::vector<std::int64_t> stamp_ns;         ///< sample stamps [ns], any epoch
+  std::array<std::vector<double>, 6> values;  ///< gyro x y z [rad/s], accel x y z [m/s²]
+  /// Where each column came from, e.g. "angular_velocity.x", and the unit it had there.
+  std::array<std::string, 6> source_fields;
+  std::array<std::string, 6> source_units;
+  std::int64_t non_finite_dropped = 0;  ///< NaN/Inf values in dropped samples
+  std::int64_t rows_dropped = 0;        ///< samples dropped because they held NaN/Inf
+
+  std::size_t size() const { return stamp_ns.size(); }
+};
+
+/// The Recording of `samples`, built as recording_from_imu_samples builds it (time_s relative to
+/// the first stamp, exact to the ns; sample period from the intervals; channels gyro_x …
+/// accel_z with source_column "TOPIC.FIELD"; the sampling report). STAMP_NAME names the stamps
+/// in the error for stamps that never increase ("header.stamp", "log time"). Throws InputError
+/// (naming `source_path`) for fewer than 2 samples or stamps that never increase.
+Recording recording_from_stamped_samples(StampedImuColumns samples, const std::string& source_path,
+                                         const std::string& topic, const std::string& stamp_name);
+
 }  // namespace imunoise::pipeline

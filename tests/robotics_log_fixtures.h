@@ -1,0 +1,73 @@
+/// @file
+/// @brief The robotics-log fixtures of the io and tools tests (ROS 1 bags, MCAP, rosbag2 .db3,
+/// ULog), written at test time by the other tools' own writers into IMUNOISE_FIXTURE_DIR
+/// (tests/fixtures/write_fixtures.sh, the ctest fixture "robotics_logs"), and the samples each
+/// writer was given, read back from the CSV it wrote beside them.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace imunoise::test {
+
+/// The folder of one writer's fixtures: IMUNOISE_FIXTURE_DIR/SUBDIR.
+inline std::filesystem::path fixture_dir(const std::string& subdir) {
+  return std::filesystem::path(IMUNOISE_FIXTURE_DIR) / subdir;
+}
+
+/// Why the fixtures of writer KIND ("rosbag1", "node") are missing, or "" when they are there.
+inline std::string fixture_skip_reason(const std::string& kind) {
+  std::ifstream skip(std::filesystem::path(IMUNOISE_FIXTURE_DIR) / (kind + ".skip"));
+  if (!skip) return {};
+  std::stringstream s;
+  s << skip.rdbuf();
+  return "the " + kind + " fixture writer could not run: " + s.str();
+}
+
+/// Skips the test when writer KIND could not run (its reason); fails it when the fixture file
+/// SUBDIR/NAME is missing otherwise; else VAR is its path.
+#define IMUNOISE_REQUIRE_FIXTURE(var, kind, subdir, name)                                          \
+  if (const std::string reason_ = ::imunoise::test::fixture_skip_reason(kind); !reason_.empty()) { \
+    GTEST_SKIP() << reason_;                                                                       \
+  }                                                                                                \
+  const std::filesystem::path var = ::imunoise::test::fixture_dir(subdir) / (name);                \
+  if (!std::filesystem::exists(var)) {                                                             \
+    GTEST_FAIL() << var                                                                            \
+                 << " is missing: run the tests with ctest (its fixture "                          \
+                    "RoboticsLogFixtures.Write writes it), or tests/fixtures/write_fixtures.sh";   \
+  }
+
+/// One sample as the fixture writer was given it.
+struct FixtureSample {
+  std::int64_t stamp_ns = 0;       ///< header.stamp / timestamp_sample [ns]
+  std::int64_t log_ns = 0;         ///< the log / receive time [ns]
+  std::array<double, 6> values{};  ///< gyro x y z [rad/s], accel x y z [m/s²]
+};
+
+/// The samples of a fixture CSV (time_ns, log_time_ns, six values; a header line first).
+inline std::vector<FixtureSample> read_fixture_samples(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<FixtureSample> out;
+  while (std::getline(in, line)) {
+    FixtureSample s;
+    const char* p = line.c_str();
+    char* end = nullptr;
+    s.stamp_ns = std::strtoll(p, &end, 10);
+    s.log_ns = std::strtoll(end + 1, &end, 10);
+    for (double& v : s.values) v = std::strtod(end + 1, &end);
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace imunoise::test
