@@ -8,6 +8,7 @@
 #include "io/binary_recording.h"
 #include "io/csv_reader.h"
 #include "io/lcm_log.h"
+#include "io/rosbag1_reader.h"
 
 namespace imunoise::io {
 
@@ -27,9 +28,13 @@ std::string_view recording_format_name(RecordingFormat format) {
       return "binary";
     case RecordingFormat::kLcmLog:
       return "LCM log";
+    case RecordingFormat::kRosbag1:
+      return "ROS 1 bag";
   }
   return "?";
 }
+
+bool is_robotics_log(RecordingFormat format) { return format == RecordingFormat::kRosbag1; }
 
 bool is_lcm_log_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -41,6 +46,11 @@ bool is_lcm_log_file(const std::string& path) {
 RecordingFormat detect_recording_format(const std::string& path) {
   if (is_binary_recording_file(path)) return RecordingFormat::kBinary;
   if (is_lcm_log_file(path)) return RecordingFormat::kLcmLog;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.starts_with("#ROSBAG V")) return RecordingFormat::kRosbag1;
   return RecordingFormat::kTable;
 }
 
@@ -87,6 +97,11 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
     }
     case RecordingFormat::kTable:
       return read_recording(path, config, progress, threads);
+    case RecordingFormat::kRosbag1: {
+      LogReadOptions options;
+      options.drop_non_finite = config.drop_non_finite.value_or(false);
+      return read_robotics_log_as(format, path, options);
+    }
     case RecordingFormat::kLcmLog:
       break;
   }
@@ -104,6 +119,17 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
     }
   }
   return recording;
+}
+
+std::vector<LogTopic> list_log_topics(RecordingFormat format, const std::string& path) {
+  IMUNOISE_EXPECT(is_robotics_log(format), "list_log_topics: not a robotics log format");
+  return list_rosbag1_topics(path);
+}
+
+pipeline::Recording read_robotics_log_as(RecordingFormat format, const std::string& path,
+                                         const LogReadOptions& options) {
+  IMUNOISE_EXPECT(is_robotics_log(format), "read_robotics_log_as: not a robotics log format");
+  return read_rosbag1_imu(path, options);
 }
 
 }  // namespace imunoise::io

@@ -38,7 +38,7 @@ struct AllanArgs {
   bool drop_non_finite = false;
   bool bias_corrected = false;
   unsigned threads = 0;
-  LcmInputFlags lcm;
+  LogInputFlags log;
   CLI::Option* tau0_option = nullptr;  // to tell a given --tau0 from the default
   Verbosity verbosity;
 };
@@ -49,7 +49,7 @@ io::Series recording_series(const AllanArgs& args, const io::SeriesReadOptions& 
                             bool lcm_log) {
   io::InputConfig config;
   config.drop_non_finite = read_options.drop_non_finite;
-  pipeline::Recording recording = read_input_recording(args.file, config, args.lcm);
+  pipeline::Recording recording = read_input_recording(args.file, config, args.log);
   std::string names;
   for (const pipeline::Channel& c : recording.channels)
     names += (names.empty() ? "" : ", ") + c.name;
@@ -176,7 +176,7 @@ void register_allan_command(CLI::App& app) {
   cmd->add_option("--column", args->column,
                   "column name (header) or 1-based index; needed when the file has several. For "
                   "an LCM log: the channel, gyro_x … accel_z");
-  add_lcm_input_options(*cmd, args->lcm);
+  add_log_input_options(*cmd, args->log);
   cmd->add_option("--data", args->data, "the series is rate ('frequency') or integrated ('phase')")
       ->check(CLI::IsMember({"rate", "phase"}))
       ->capture_default_str();

@@ -57,7 +57,7 @@ struct AnalyzeArgs {
   std::string file;
   io::InputConfig flags;
   std::string config_path;
-  LcmInputFlags lcm;
+  LogInputFlags log;
   std::string output_dir;
   AnalysisSettings analysis;
   std::string truth_path;
@@ -90,7 +90,7 @@ void run_analyze(const AnalyzeArgs& args, io::StageTimes& times) {
   if (args.publish) bus.emplace(args.lcm_url);
 
   pipeline::Recording recording =
-      read_input_recording(args.file, config, args.lcm, bar.callback(), args.analysis.threads);
+      read_input_recording(args.file, config, args.log, bar.callback(), args.analysis.threads);
   times.mark("read");
   io::StageTimes channel_times;
   pipeline::RecordingAnalysis result = analyze_recording_freeing_time_stamps(
@@ -149,7 +149,7 @@ void register_analyze_command(CLI::App& app) {
                   "recording: CSV/TXT (see 'imunoise check --help') or an lcm-logger log")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
-  add_lcm_input_options(*cmd, args->lcm);
+  add_log_input_options(*cmd, args->log);
   cmd->add_option("-o,--output", args->output_dir, "output directory (created if needed)")
       ->required();
   add_analysis_options(*cmd, args->analysis);

@@ -21,7 +21,7 @@ namespace {
 
 struct CheckArgs {
   std::string file;
-  LcmInputFlags lcm;
+  LogInputFlags log;
   io::InputConfig flags;
   std::string config_path;
   bool json = false;
@@ -33,7 +33,7 @@ void run_check(const CheckArgs& args) {
   io::StageTimes times;
   io::ProgressBar bar("check", progress_wanted(args.verbosity));
   const pipeline::Recording recording =
-      read_input_recording(args.file, config, args.lcm, bar.callback());
+      read_input_recording(args.file, config, args.log, bar.callback());
   bar.finish();
   times.mark("read");
   if (args.json) {
@@ -64,7 +64,7 @@ void register_check_command(CLI::App& app) {
   cmd->add_option("REC", args->file, "recording: CSV/TXT with a header row, or headerless")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
-  add_lcm_input_options(*cmd, args->lcm);
+  add_log_input_options(*cmd, args->log);
   cmd->add_flag("--json", args->json,
                 "print one JSON object (keys carry units: rate_hz, longest_gap_s, jitter_rms_s)");
   add_verbosity_options(*cmd, args->verbosity);

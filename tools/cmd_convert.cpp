@@ -29,7 +29,7 @@ struct ConvertArgs {
   std::string output;
   std::string to;  ///< csv|binary|lcm; empty = from the output's extension
   std::string lcm_channel = "IMU";
-  LcmInputFlags lcm;
+  LogInputFlags log;
   io::InputConfig flags;
   std::string config_path;
   Verbosity verbosity;
@@ -59,7 +59,7 @@ void run_convert(const ConvertArgs& args) {
   io::StageTimes times;
   io::ProgressBar bar("convert", progress_wanted(args.verbosity));
   const pipeline::Recording recording =
-      read_input_recording(args.input, config, args.lcm, bar.callback());
+      read_input_recording(args.input, config, args.log, bar.callback());
   bar.finish();
   times.mark("read");
   switch (format) {
@@ -72,6 +72,8 @@ void run_convert(const ConvertArgs& args) {
     case io::RecordingFormat::kLcmLog:
       io::write_recording_lcm(recording, args.output, args.lcm_channel);
       break;
+    default:  // robotics logs are inputs only: output_format never gives one
+      throw ContractViolation("convert: no writer for the output format");
   }
   times.mark("write");
   std::cout << "imunoise convert: wrote " << recording.sample_count() << " samples × "
@@ -97,7 +99,7 @@ void register_convert_command(CLI::App& app) {
   cmd->add_option("--lcm-channel", args->lcm_channel, "channel of the samples in an LCM output")
       ->capture_default_str();
   add_input_options(*cmd, args->flags, args->config_path);
-  add_lcm_input_options(*cmd, args->lcm);
+  add_log_input_options(*cmd, args->log);
   add_verbosity_options(*cmd, args->verbosity);
   cmd->footer(
       "The CSV output reads back with default options and gives the same values bit for bit\n"

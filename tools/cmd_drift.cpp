@@ -38,7 +38,7 @@ namespace {
 
 struct DriftArgs {
   std::string file;
-  LcmInputFlags lcm;
+  LogInputFlags log;
   io::InputConfig flags;
   std::string config_path;
   std::string model_path;
@@ -107,7 +107,7 @@ void run_drift(const DriftArgs& a, io::StageTimes& times) {
   const models::NoiseModel model = io::load_model_yaml(a.model_path);
   const pipeline::DriftRunOptions options = drift_options(a);
   const io::InputConfig config = resolve_input_config(a.flags, a.config_path);
-  const pipeline::Recording recording = read_input_recording(a.file, config, a.lcm, bar.callback());
+  const pipeline::Recording recording = read_input_recording(a.file, config, a.log, bar.callback());
   times.mark("read");
   // The Monte Carlo starts once the segments and the prediction are done.
   const ProgressCallback draw = bar.callback();
@@ -159,7 +159,7 @@ void register_drift_command(CLI::App& app) {
   cmd->add_option("REC", args->file, "recording (CSV/TXT; see 'imunoise check --help')")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
-  add_lcm_input_options(*cmd, args->lcm);
+  add_log_input_options(*cmd, args->log);
   cmd->add_option("--model", args->model_path, "fitted model.yaml (imunoise analyze)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -47,7 +47,7 @@ std::string channel_of_type(const std::string& path, const io::LcmUserImuDecoder
 /// The user's IMU type from --lcm-type/--lcm-struct, its fields named by the column flags
 /// (--time-col default utime in µs, --gyro-cols and --accel-cols required) in the units of
 /// --time-unit, --gyro-unit and --accel-unit.
-io::LcmUserType user_type_of(const LcmInputFlags& lcm, const io::InputConfig& config) {
+io::LcmUserType user_type_of(const LogInputFlags& lcm, const io::InputConfig& config) {
   if (config.gyro_columns.empty() || config.accel_columns.empty()) {
     throw InputError("--lcm-type " + lcm.type_path +
                      ": name the fields with --gyro-cols and --accel-cols (one 3-element array "
@@ -94,13 +94,39 @@ void reject_table_flags(const std::string& path, const io::InputConfig& config, 
                    (user_type ? "" : " (imu_sample_t fields are SI by definition)"));
 }
 
+/// The LCM flags given, in the order they are checked.
+std::vector<const char*> lcm_flags_given(const LogInputFlags& flags) {
+  std::vector<const char*> given;
+  if (!flags.channel.empty()) given.push_back("--channel");
+  if (!flags.type_path.empty()) given.push_back("--lcm-type");
+  if (!flags.struct_name.empty()) given.push_back("--lcm-struct");
+  return given;
+}
+
+/// The robotics-log flags given, in the order they are checked.
+std::vector<const char*> robotics_flags_given(const LogInputFlags& flags) {
+  std::vector<const char*> given;
+  if (!flags.topic.empty()) given.push_back("--topic");
+  if (flags.instance) given.push_back("--instance");
+  if (!flags.time_source.empty()) given.push_back("--time-source");
+  return given;
+}
+
+/// Robotics-log flags on another format: an InputError naming the first.
+void reject_robotics_flags(const std::string& path, const LogInputFlags& flags,
+                           io::RecordingFormat format) {
+  const std::vector<const char*> given = robotics_flags_given(flags);
+  if (given.empty()) return;
+  throw InputError(path + ": " + given.front() +
+                   " applies to robotics logs (ROS bags, MCAP, rosbag2, ULog); this file is read "
+                   "as " +
+                   std::string(io::recording_format_name(format)));
+}
+
 /// Table and LCM flags mean nothing for a binary recording, whose header carries rate and units.
 void reject_flags_for_binary(const std::string& path, const io::InputConfig& config,
-                             const LcmInputFlags& lcm) {
-  std::vector<const char*> given;
-  if (!lcm.channel.empty()) given.push_back("--channel");
-  if (!lcm.type_path.empty()) given.push_back("--lcm-type");
-  if (!lcm.struct_name.empty()) given.push_back("--lcm-struct");
+                             const LogInputFlags& lcm) {
+  std::vector<const char*> given = lcm_flags_given(lcm);
   for (const char* flag : table_flags_given(config, true)) given.push_back(flag);
   if (given.empty()) return;
   throw InputError(path + ": " + given.front() +
@@ -108,9 +134,33 @@ void reject_flags_for_binary(const std::string& path, const io::InputConfig& con
                    "rate and units)");
 }
 
+/// The robotics-log read of PATH (FORMAT) with FLAGS: table and LCM flags are refused.
+pipeline::Recording read_robotics_log(const std::string& path, io::RecordingFormat format,
+                                      const io::InputConfig& config, const LogInputFlags& flags) {
+  std::vector<const char*> given = lcm_flags_given(flags);
+  for (const char* flag : table_flags_given(config, true)) given.push_back(flag);
+  if (!given.empty()) {
+    throw InputError(path + ": " + given.front() + " does not apply to a " +
+                     std::string(io::recording_format_name(format)) +
+                     " (its messages carry stamps and SI units; choose the topic with --topic)");
+  }
+  io::LogReadOptions options;
+  options.topic = flags.topic;
+  options.instance = flags.instance;
+  options.drop_non_finite = config.drop_non_finite.value_or(false);
+  if (!flags.time_source.empty()) {
+    const auto source = io::parse_time_source(flags.time_source);
+    if (!source) {
+      throw InputError("--time-source '" + flags.time_source + "': expected header or log");
+    }
+    options.time_source = *source;
+  }
+  return io::read_robotics_log_as(format, path, options);
+}
+
 }  // namespace
 
-void add_lcm_input_options(CLI::App& cmd, LcmInputFlags& flags) {
+void add_log_input_options(CLI::App& cmd, LogInputFlags& flags) {
   const std::string group = "LCM log input (files written by lcm-logger)";
   cmd.add_option("--channel", flags.channel,
                  "IMU channel of an LCM log (default: the log's only imunoise.imu_sample_t "
@@ -125,12 +175,24 @@ void add_lcm_input_options(CLI::App& cmd, LcmInputFlags& flags) {
   cmd.add_option("--lcm-struct", flags.struct_name,
                  "struct of --lcm-type to use, 'package.name' or 'name' (default: the only one)")
       ->group(group);
+  const std::string robotics = "Robotics logs (ROS 1 bags)";
+  cmd.add_option("--topic", flags.topic,
+                 "IMU topic of a robotics log (default: its only sensor_msgs/Imu topic)")
+      ->group(robotics);
+  cmd.add_option("--instance", flags.instance, "instance of a multi-instance ULog topic")
+      ->group(robotics);
+  cmd.add_option("--time-source", flags.time_source,
+                 "stamps of a robotics log: header (the message's header.stamp, default) or log "
+                 "(when the recorder received it)")
+      ->group(robotics);
 }
 
 pipeline::Recording read_input_recording(const std::string& path, const io::InputConfig& config,
-                                         const LcmInputFlags& lcm, const ProgressCallback& progress,
+                                         const LogInputFlags& lcm, const ProgressCallback& progress,
                                          unsigned threads) {
   const io::RecordingFormat format = io::detect_recording_format(path);
+  if (io::is_robotics_log(format)) return read_robotics_log(path, format, config, lcm);
+  reject_robotics_flags(path, lcm, format);
   io::LcmImuSource source;
   if (format == io::RecordingFormat::kBinary) {
     reject_flags_for_binary(path, config, lcm);
