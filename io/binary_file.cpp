@@ -67,6 +67,19 @@ void BinaryFile::read(std::uint64_t offset, std::uint64_t count, std::vector<std
   (void)read_some(offset, count, out);
 }
 
+std::span<const std::uint8_t> BinaryFile::view(std::uint64_t offset, std::uint64_t count,
+                                               std::string_view what) {
+  if (offset >= window_offset_ && count <= window_.size() &&
+      offset - window_offset_ <= window_.size() - count) {
+    return std::span<const std::uint8_t>(window_).subspan(offset - window_offset_, count);
+  }
+  constexpr std::uint64_t kReadAhead = std::uint64_t{1} << 20;
+  if (offset > size_ || count > size_ - offset) read(offset, count, window_, what);  // throws
+  window_offset_ = offset;
+  (void)read_some(offset, count < kReadAhead ? kReadAhead : count, window_);
+  return std::span<const std::uint8_t>(window_).first(count);
+}
+
 void ByteCursor::fail(const std::string& problem) const {
   throw_at_offset(*path_, offset(), context_.empty() ? problem : problem + " " + context_);
 }

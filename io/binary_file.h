@@ -42,6 +42,11 @@ class BinaryFile {
   std::size_t read_some(std::uint64_t offset, std::uint64_t count,
                         std::vector<std::uint8_t>& out) const;
 
+  /// A view of the COUNT bytes at OFFSET, through a read-ahead buffer of at least 1 MiB (so
+  /// that many small records cost few reads); valid until the next call. Checked as read().
+  std::span<const std::uint8_t> view(std::uint64_t offset, std::uint64_t count,
+                                     std::string_view what);
+
   /// throw_at_offset for this file.
   [[noreturn]] void fail(std::uint64_t offset, const std::string& problem) const {
     throw_at_offset(path_, offset, problem);
@@ -51,6 +56,8 @@ class BinaryFile {
   std::string path_;
   int fd_ = -1;
   std::uint64_t size_ = 0;
+  std::vector<std::uint8_t> window_;  // the bytes of view(), from window_offset_
+  std::uint64_t window_offset_ = 0;
 };
 
 /// Little-endian reads over bytes in memory that begin at file offset BASE (the offset the

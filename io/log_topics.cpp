@@ -63,16 +63,23 @@ const LogTopic& select_imu_topic(const std::string& path, const std::vector<LogT
                                  const LogReadOptions& options, std::string_view file_kind) {
   const LogTopic* chosen = nullptr;
   if (options.topic.empty()) {
+    // The IMU topics with messages are the candidates.
     std::size_t imu_topics = 0;
+    std::size_t empty_imu_topics = 0;
     for (const LogTopic& t : topics) {
       if (!t.is_imu || (options.instance && t.instance != options.instance)) continue;
+      if (t.message_count == 0) {
+        ++empty_imu_topics;
+        continue;
+      }
       ++imu_topics;
       chosen = &t;
     }
     if (imu_topics != 1) {
       refuse(path,
-             imu_topics == 0 ? "no IMU topic (sensor_msgs/Imu, or a PX4 IMU topic) found"
-                             : std::to_string(imu_topics) + " IMU topics, which one?",
+             imu_topics > 1         ? std::to_string(imu_topics) + " IMU topics, which one?"
+             : empty_imu_topics > 0 ? "no IMU topic with messages"
+                                    : "no IMU topic (sensor_msgs/Imu, or a PX4 IMU topic) found",
              topics, file_kind);
     }
   } else {

@@ -52,7 +52,8 @@ struct LogTopic {
 std::string describe_log_topics(const std::vector<LogTopic>& topics, std::string_view file_kind);
 
 /// The topic of TOPICS to read: the one named OPTIONS.topic (and of OPTIONS.instance when
-/// given), or, without a name, the only one with is_imu. Throws InputError "PATH: problem; give
+/// given), or, without a name, the only one with is_imu and messages. Throws InputError "PATH:
+/// problem; give
 /// --topic NAME; <describe_log_topics>" when the name is not found, names a topic of another
 /// type or without messages, or when no name is given and the IMU topics are not exactly one.
 const LogTopic& select_imu_topic(const std::string& path, const std::vector<LogTopic>& topics,

@@ -8,6 +8,7 @@
 #include "io/binary_recording.h"
 #include "io/csv_reader.h"
 #include "io/lcm_log.h"
+#include "io/mcap_reader.h"
 #include "io/rosbag1_reader.h"
 
 namespace imunoise::io {
@@ -30,11 +31,15 @@ std::string_view recording_format_name(RecordingFormat format) {
       return "LCM log";
     case RecordingFormat::kRosbag1:
       return "ROS 1 bag";
+    case RecordingFormat::kMcap:
+      return "MCAP file";
   }
   return "?";
 }
 
-bool is_robotics_log(RecordingFormat format) { return format == RecordingFormat::kRosbag1; }
+bool is_robotics_log(RecordingFormat format) {
+  return format == RecordingFormat::kRosbag1 || format == RecordingFormat::kMcap;
+}
 
 bool is_lcm_log_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -51,6 +56,7 @@ RecordingFormat detect_recording_format(const std::string& path) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   if (head.starts_with("#ROSBAG V")) return RecordingFormat::kRosbag1;
+  if (head.starts_with(kMcapMagic)) return RecordingFormat::kMcap;
   return RecordingFormat::kTable;
 }
 
@@ -97,7 +103,8 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
     }
     case RecordingFormat::kTable:
       return read_recording(path, config, progress, threads);
-    case RecordingFormat::kRosbag1: {
+    case RecordingFormat::kRosbag1:
+    case RecordingFormat::kMcap: {
       LogReadOptions options;
       options.drop_non_finite = config.drop_non_finite.value_or(false);
       return read_robotics_log_as(format, path, options);
@@ -123,12 +130,14 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
 
 std::vector<LogTopic> list_log_topics(RecordingFormat format, const std::string& path) {
   IMUNOISE_EXPECT(is_robotics_log(format), "list_log_topics: not a robotics log format");
+  if (format == RecordingFormat::kMcap) return list_mcap_topics(path);
   return list_rosbag1_topics(path);
 }
 
 pipeline::Recording read_robotics_log_as(RecordingFormat format, const std::string& path,
                                          const LogReadOptions& options) {
   IMUNOISE_EXPECT(is_robotics_log(format), "read_robotics_log_as: not a robotics log format");
+  if (format == RecordingFormat::kMcap) return read_mcap_imu(path, options);
   return read_rosbag1_imu(path, options);
 }
 

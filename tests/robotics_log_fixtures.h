@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/recording.h"
+
 namespace imunoise::test {
 
 /// The folder of one writer's fixtures: IMUNOISE_FIXTURE_DIR/SUBDIR.
@@ -68,6 +70,34 @@ inline std::vector<FixtureSample> read_fixture_samples(const std::filesystem::pa
     out.push_back(s);
   }
   return out;
+}
+
+/// Checks every sample of RECORDING (values and stamps) against what the writer was given:
+/// the stamps header.stamp (LOG_TIME false) or the log time.
+inline void expect_fixture_samples(const pipeline::Recording& recording,
+                                   const std::vector<FixtureSample>& expected, bool log_time) {
+  ASSERT_EQ(recording.sample_count(), expected.size());
+  ASSERT_EQ(recording.channels.size(), 6u);
+  const auto stamp = [&](std::size_t i) {
+    return log_time ? expected[i].log_ns : expected[i].stamp_ns;
+  };
+  EXPECT_DOUBLE_EQ(recording.start_time_s, static_cast<double>(stamp(0)) * 1e-9);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    ASSERT_EQ(recording.time_s[i], static_cast<double>(stamp(i) - stamp(0)) * 1e-9) << i;
+    for (std::size_t c = 0; c < 6; ++c) {
+      ASSERT_EQ(recording.channels[c].values[i], expected[i].values[c])
+          << "sample " << i << " channel " << c;
+    }
+  }
+}
+
+/// BYTES written to DIR/NAME; returns the path.
+inline std::filesystem::path write_fixture_bytes(const std::filesystem::path& dir,
+                                                 const std::string& name,
+                                                 const std::string& bytes) {
+  const std::filesystem::path p = dir / name;
+  std::ofstream(p, std::ios::binary) << bytes;
+  return p;
 }
 
 }  // namespace imunoise::test

@@ -140,7 +140,7 @@ pipeline::Recording read_robotics_log(const std::string& path, io::RecordingForm
   std::vector<const char*> given = lcm_flags_given(flags);
   for (const char* flag : table_flags_given(config, true)) given.push_back(flag);
   if (!given.empty()) {
-    throw InputError(path + ": " + given.front() + " does not apply to a " +
+    throw InputError(path + ": " + given.front() + " does not apply to this " +
                      std::string(io::recording_format_name(format)) +
                      " (its messages carry stamps and SI units; choose the topic with --topic)");
   }

@@ -22,30 +22,12 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-/// Checks every sample of RECORDING against what the writer was given.
-void expect_samples(const pipeline::Recording& recording,
-                    const std::vector<test::FixtureSample>& expected, bool log_time) {
-  ASSERT_EQ(recording.sample_count(), expected.size());
-  ASSERT_EQ(recording.channels.size(), 6u);
-  const auto stamp = [&](std::size_t i) {
-    return log_time ? expected[i].log_ns : expected[i].stamp_ns;
-  };
-  EXPECT_DOUBLE_EQ(recording.start_time_s, static_cast<double>(stamp(0)) * 1e-9);
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    ASSERT_EQ(recording.time_s[i], static_cast<double>(stamp(i) - stamp(0)) * 1e-9) << i;
-    for (std::size_t c = 0; c < 6; ++c) {
-      ASSERT_EQ(recording.channels[c].values[i], expected[i].values[c])
-          << "sample " << i << " " << c;
-    }
-  }
-}
+using test::expect_fixture_samples;
 
 std::string bytes_of(const fs::path& p) { return test::read_file_bytes(p); }
 
 fs::path write_bytes(const fs::path& dir, const std::string& name, const std::string& bytes) {
-  const fs::path p = dir / name;
-  std::ofstream(p, std::ios::binary) << bytes;
-  return p;
+  return test::write_fixture_bytes(dir, name, bytes);
 }
 
 TEST(Rosbag1Reader, ReadsEverySampleOfEachCompressionWithAndWithoutIndex) {
@@ -57,7 +39,7 @@ TEST(Rosbag1Reader, ReadsEverySampleOfEachCompressionWithAndWithoutIndex) {
     const fs::path bag = test::fixture_dir("rosbag1") / name;
     EXPECT_TRUE(is_rosbag1_file(bag.string()));
     const pipeline::Recording recording = read_rosbag1_imu(bag.string(), {});
-    expect_samples(recording, expected, false);
+    expect_fixture_samples(recording, expected, false);
     EXPECT_EQ(recording.channels[0].name, "gyro_x");
     EXPECT_EQ(recording.channels[0].source_column, "/imu/data.angular_velocity.x");
     EXPECT_EQ(recording.channels[5].source_column, "/imu/data.linear_acceleration.z");
@@ -74,8 +56,8 @@ TEST(Rosbag1Reader, LogTimeSourceTakesTheRecordTime) {
   options.time_source = TimeSource::kLog;
   for (const char* name : {"imu_bz2.bag", "imu_lz4_unindexed.bag"}) {
     SCOPED_TRACE(name);
-    expect_samples(read_rosbag1_imu((test::fixture_dir("rosbag1") / name).string(), options),
-                   expected, true);
+    expect_fixture_samples(
+        read_rosbag1_imu((test::fixture_dir("rosbag1") / name).string(), options), expected, true);
   }
 }
 

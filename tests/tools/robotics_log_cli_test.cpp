@@ -71,6 +71,12 @@ TEST(RoboticsLogCli, AnalyzeOnARosbagGivesTheModelOfTheCsvOfTheSameSamples) {
                        test::make_temp_dir("robotics_cli"));
 }
 
+TEST(RoboticsLogCli, AnalyzeOnAnMcapGivesTheModelOfTheCsvOfTheSameSamples) {
+  IMUNOISE_REQUIRE_FIXTURE(file, "node", "mcap", "analyze.mcap");
+  expect_same_analysis(file, test::fixture_dir("mcap") / "analyze.csv",
+                       test::make_temp_dir("robotics_cli"));
+}
+
 TEST(RoboticsLogCli, CheckAllanAndConvertReadABag) {
   IMUNOISE_REQUIRE_FIXTURE(bag, "rosbag1", "rosbag1", "imu_lz4.bag");
   const fs::path dir = test::make_temp_dir("robotics_cli");
@@ -120,10 +126,10 @@ TEST(RoboticsLogCli, TimeSourceAndFlagsThatDoNotApply) {
   EXPECT_THAT(bad_source.err, HasSubstr("--time-source 'rx': expected header or log"));
   const auto rate = run_imunoise("check " + quoted_for_shell(bag) + " --rate 100");
   EXPECT_EQ(rate.exit_code, 2);
-  EXPECT_THAT(rate.err, HasSubstr("--rate does not apply to a ROS 1 bag"));
+  EXPECT_THAT(rate.err, HasSubstr("--rate does not apply to this ROS 1 bag"));
   const auto channel = run_imunoise("check " + quoted_for_shell(bag) + " --channel IMU");
   EXPECT_EQ(channel.exit_code, 2);
-  EXPECT_THAT(channel.err, HasSubstr("--channel does not apply to a ROS 1 bag"));
+  EXPECT_THAT(channel.err, HasSubstr("--channel does not apply to this ROS 1 bag"));
   const auto csv = run_imunoise(
       "check " + quoted_for_shell(test::fixture_dir("rosbag1") / "imu.csv") + " --topic /imu");
   EXPECT_EQ(csv.exit_code, 2);
