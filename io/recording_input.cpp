@@ -10,6 +10,7 @@
 #include "io/lcm_log.h"
 #include "io/mcap_reader.h"
 #include "io/rosbag1_reader.h"
+#include "io/rosbag2_sqlite_reader.h"
 
 namespace imunoise::io {
 
@@ -33,12 +34,15 @@ std::string_view recording_format_name(RecordingFormat format) {
       return "ROS 1 bag";
     case RecordingFormat::kMcap:
       return "MCAP file";
+    case RecordingFormat::kRosbag2Sqlite:
+      return "rosbag2 .db3";
   }
   return "?";
 }
 
 bool is_robotics_log(RecordingFormat format) {
-  return format == RecordingFormat::kRosbag1 || format == RecordingFormat::kMcap;
+  return format == RecordingFormat::kRosbag1 || format == RecordingFormat::kMcap ||
+         format == RecordingFormat::kRosbag2Sqlite;
 }
 
 bool is_lcm_log_file(const std::string& path) {
@@ -57,6 +61,7 @@ RecordingFormat detect_recording_format(const std::string& path) {
   head.resize(static_cast<std::size_t>(in.gcount()));
   if (head.starts_with("#ROSBAG V")) return RecordingFormat::kRosbag1;
   if (head.starts_with(kMcapMagic)) return RecordingFormat::kMcap;
+  if (head.starts_with(kSqliteMagic)) return RecordingFormat::kRosbag2Sqlite;
   return RecordingFormat::kTable;
 }
 
@@ -104,7 +109,8 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
     case RecordingFormat::kTable:
       return read_recording(path, config, progress, threads);
     case RecordingFormat::kRosbag1:
-    case RecordingFormat::kMcap: {
+    case RecordingFormat::kMcap:
+    case RecordingFormat::kRosbag2Sqlite: {
       LogReadOptions options;
       options.drop_non_finite = config.drop_non_finite.value_or(false);
       return read_robotics_log_as(format, path, options);
@@ -131,6 +137,7 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
 std::vector<LogTopic> list_log_topics(RecordingFormat format, const std::string& path) {
   IMUNOISE_EXPECT(is_robotics_log(format), "list_log_topics: not a robotics log format");
   if (format == RecordingFormat::kMcap) return list_mcap_topics(path);
+  if (format == RecordingFormat::kRosbag2Sqlite) return list_rosbag2_sqlite_topics(path);
   return list_rosbag1_topics(path);
 }
 
@@ -138,6 +145,7 @@ pipeline::Recording read_robotics_log_as(RecordingFormat format, const std::stri
                                          const LogReadOptions& options) {
   IMUNOISE_EXPECT(is_robotics_log(format), "read_robotics_log_as: not a robotics log format");
   if (format == RecordingFormat::kMcap) return read_mcap_imu(path, options);
+  if (format == RecordingFormat::kRosbag2Sqlite) return read_rosbag2_sqlite_imu(path, options);
   return read_rosbag1_imu(path, options);
 }
 

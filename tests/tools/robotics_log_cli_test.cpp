@@ -77,6 +77,12 @@ TEST(RoboticsLogCli, AnalyzeOnAnMcapGivesTheModelOfTheCsvOfTheSameSamples) {
                        test::make_temp_dir("robotics_cli"));
 }
 
+TEST(RoboticsLogCli, AnalyzeOnARosbag2DatabaseGivesTheModelOfTheCsvOfTheSameSamples) {
+  IMUNOISE_REQUIRE_FIXTURE(file, "node", "db3", "analyze.db3");
+  expect_same_analysis(file, test::fixture_dir("db3") / "analyze.csv",
+                       test::make_temp_dir("robotics_cli"));
+}
+
 TEST(RoboticsLogCli, CheckAllanAndConvertReadABag) {
   IMUNOISE_REQUIRE_FIXTURE(bag, "rosbag1", "rosbag1", "imu_lz4.bag");
   const fs::path dir = test::make_temp_dir("robotics_cli");
