@@ -146,7 +146,8 @@ void register_analyze_command(CLI::App& app) {
       "recording (OADEV + OHDEV with intervals, PSD, weighted NNLS fit with bootstrap "
       "intervals) and write DIR/model.yaml, allan.csv and psd.csv");
   cmd->add_option("REC", args->file,
-                  "recording: CSV/TXT (see 'imunoise check --help') or an lcm-logger log")
+                  "recording: CSV/TXT (see 'imunoise check --help'), an lcm-logger log, a ROS bag, "
+                  "MCAP or rosbag2 .db3 (docs/inputs.md)")
       ->required();
   add_input_options(*cmd, args->flags, args->config_path);
   add_log_input_options(*cmd, args->log);

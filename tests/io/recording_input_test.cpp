@@ -14,6 +14,7 @@
 #include "io/binary_recording.h"
 #include "io/csv_reader.h"
 #include "io/recording_lcm_writer.h"
+#include "robotics_log_fixtures.h"
 #include "test_support.h"
 
 namespace imunoise::io {
@@ -53,6 +54,36 @@ TEST_F(RecordingInput, FormatIsToldByContentNotName) {
   fs::copy_file(log(), dir_ / "log.csv");
   EXPECT_EQ(detect_recording_format((dir_ / "log.csv").string()), RecordingFormat::kLcmLog);
   EXPECT_EQ(detect_recording_format((dir_ / "none").string()), RecordingFormat::kTable);
+}
+
+TEST_F(RecordingInput, RoboticsLogsAreToldByTheirFirstBytes) {
+  // The magic alone decides (the readers then check the rest).
+  test::write_text(dir_ / "a.csv", "#ROSBAG V2.0\nxyz");
+  EXPECT_EQ(detect_recording_format((dir_ / "a.csv").string()), RecordingFormat::kRosbag1);
+  test::write_text(dir_ / "b.csv", "#ROSBAG V1.2\nxyz");
+  EXPECT_EQ(detect_recording_format((dir_ / "b.csv").string()), RecordingFormat::kRosbag1);
+  test::write_text(dir_ / "c.bag", std::string("\x89MCAP0\r\n\x01", 9));
+  EXPECT_EQ(detect_recording_format((dir_ / "c.bag").string()), RecordingFormat::kMcap);
+  test::write_text(dir_ / "d.mcap", std::string("SQLite format 3\0", 16));
+  EXPECT_EQ(detect_recording_format((dir_ / "d.mcap").string()), RecordingFormat::kRosbag2Sqlite);
+  for (const RecordingFormat f :
+       {RecordingFormat::kRosbag1, RecordingFormat::kMcap, RecordingFormat::kRosbag2Sqlite}) {
+    EXPECT_TRUE(is_robotics_log(f));
+  }
+  EXPECT_FALSE(is_robotics_log(RecordingFormat::kTable));
+  EXPECT_EQ(recording_format_name(RecordingFormat::kMcap), "MCAP file");
+}
+
+TEST_F(RecordingInput, RoboticsLogsReadThroughTheOneEntryPoint) {
+  IMUNOISE_REQUIRE_FIXTURE(bag, "rosbag1", "rosbag1", "imu_bz2.bag");
+  const RecordingFormat format = detect_recording_format(bag.string());
+  ASSERT_EQ(format, RecordingFormat::kRosbag1);
+  EXPECT_EQ(list_log_topics(format, bag.string()).size(), 2u);
+  EXPECT_EQ(read_recording_as(format, bag.string(), InputConfig{}, LcmImuSource{}).sample_count(),
+            1200u);
+  LogReadOptions options;
+  options.topic = "/imu/data";
+  EXPECT_EQ(read_robotics_log_as(format, bag.string(), options).sample_count(), 1200u);
 }
 
 TEST_F(RecordingInput, EachFormatReadsTheSameSamples) {
