@@ -142,9 +142,12 @@ const std::string* ImuSampleCollector::add(const ImuMessage& message, std::int64
   return nullptr;
 }
 
-void ImuSampleCollector::reserve(std::size_t count) {
-  columns_.stamp_ns.reserve(count);
-  for (std::vector<double>& v : columns_.values) v.reserve(count);
+void ImuSampleCollector::reserve(std::int64_t count, std::uint64_t file_bytes) {
+  const std::uint64_t bound = file_bytes / 16;
+  const std::size_t n =
+      count <= 0 ? 0 : static_cast<std::size_t>(std::min(static_cast<std::uint64_t>(count), bound));
+  columns_.stamp_ns.reserve(n);
+  for (std::vector<double>& v : columns_.values) v.reserve(n);
 }
 
 pipeline::Recording ImuSampleCollector::finish(const std::string& path, const std::string& topic) {

@@ -74,8 +74,9 @@ class ImuSampleCollector {
 
   std::size_t size() const { return columns_.size(); }
   /// Room for COUNT samples (the count a file's index states), so that the columns do not grow
-  /// past it.
-  void reserve(std::size_t count);
+  /// past it; at most FILE_BYTES / 16, since that count is the file's word, unchecked, and no
+  /// IMU message, even compressed, takes fewer bytes.
+  void reserve(std::int64_t count, std::uint64_t file_bytes);
 
   /// The Recording of the samples (pipeline::recording_from_stamped_samples), the source of
   /// each channel "TOPIC.FIELD". Throws InputError for fewer than two samples or stamps that

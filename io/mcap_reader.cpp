@@ -70,6 +70,7 @@ class McapFile {
   }
 
   const std::string& path() const { return file_.path(); }
+  std::uint64_t file_size() const { return file_.size(); }
   /// True when the summary gave the channels and their message counts.
   bool has_statistics() const { return statistics_; }
   const std::vector<Channel>& channels() const { return channels_; }
@@ -369,18 +370,18 @@ pipeline::Recording read_mcap_imu(const std::string& path, const LogReadOptions&
   McapFile file(path);
   std::set<std::uint16_t> wanted;
   std::string name = options.topic;
-  std::size_t reserve = 0;
+  std::int64_t reserve = 0;
   if (file.has_statistics()) {
     const std::vector<LogTopic> topics = topics_of(file.channels());
     const LogTopic& topic = select_imu_topic(path, topics, options, kFileKind);
     name = topic.name;
-    reserve = static_cast<std::size_t>(topic.message_count);
+    reserve = topic.message_count;
     for (const Channel& c : file.channels()) {
       if (c.topic == name) wanted.insert(c.id);
     }
   }
   ImuSink sink(file, name, options);
-  sink.samples().reserve(reserve);
+  sink.samples().reserve(reserve, file.file_size());
   file.scan(wanted, sink);
   if (!file.has_statistics()) {
     // Without statistics the topics are known only now: check the choice against them all.

@@ -148,6 +148,7 @@ class Bag {
   }
 
   const std::string& path() const { return file_.path(); }
+  std::uint64_t file_size() const { return file_.size(); }
   bool indexed() const { return indexed_; }
   const std::vector<Connection>& connections() const { return connections_; }
   const std::vector<ChunkInfo>& chunk_infos() const { return chunk_infos_; }
@@ -532,7 +533,7 @@ pipeline::Recording read_rosbag1_imu(const std::string& path, const LogReadOptio
       if (has_topic) positions.push_back(info.chunk_pos);
     }
     ImuVisitor visitor(bag, topic.name, options);
-    visitor.samples.reserve(static_cast<std::size_t>(topic.message_count));
+    visitor.samples.reserve(topic.message_count, bag.file_size());
     bag.walk(positions, visitor);
     return visitor.samples.finish(path, topic.name);
   }

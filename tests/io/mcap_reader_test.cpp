@@ -139,5 +139,18 @@ TEST(McapReader, MalformedFilesAreErrorsAtTheByteOffset) {
               HasSubstr("byte offset 0: not an MCAP file"));
 }
 
+// Found by fuzz_mcap_reader: statistics claiming more messages than a vector holds made the
+// reader reserve them (std::length_error); the counts now only bound the reservation by the
+// file size.
+TEST(McapReader, RegressionAStatisticsCountBeyondTheFileIsNoAllocation) {
+  const fs::path input = fs::path(IMUNOISE_SOURCE_DIR) /
+                         "fuzz/corpus/fuzz_mcap_reader/regression_statistics_count_reserve.mcap";
+  try {
+    (void)read_mcap_imu(input.string(), {});
+  } catch (const InputError&) {
+  } catch (const AnalysisError&) {
+  }
+}
+
 }  // namespace
 }  // namespace imunoise::io

@@ -155,6 +155,19 @@ TEST(Rosbag1Reader, ImpossibleLengthsAndUnknownCompressionAreErrorsAtTheByteOffs
                 "2147483640 bytes, the file has "));
 }
 
+// Found by fuzz_rosbag1_reader: a chunk info counting ~4·10^9 messages made the reader reserve
+// that many samples (an out-of-memory); the index's counts now only bound the reservation by
+// the file size.
+TEST(Rosbag1Reader, RegressionAnIndexCountBeyondTheFileIsNoAllocation) {
+  const fs::path input = fs::path(IMUNOISE_SOURCE_DIR) /
+                         "fuzz/corpus/fuzz_rosbag1_reader/regression_index_count_oom.bag";
+  try {
+    (void)read_rosbag1_imu(input.string(), {});
+  } catch (const InputError&) {
+  } catch (const AnalysisError&) {
+  }
+}
+
 TEST(Rosbag1Reader, NotABagIsAnError) {
   const fs::path dir = test::make_temp_dir("rosbag1");
   const fs::path p = write_bytes(dir, "text.bag", "time,gyro\n");
