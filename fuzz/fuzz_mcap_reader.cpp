@@ -14,8 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static fuzz::ScratchFile file("fuzz.mcap");
   const std::string& path = file.write(data, size);
   std::vector<io::LogTopic> topics;
-  fuzz::expect_only_typed_errors("list_mcap_topics",
-                                 [&] { topics = io::list_mcap_topics(path); });
+  fuzz::expect_only_typed_errors("list_mcap_topics", [&] { topics = io::list_mcap_topics(path); });
   (void)io::describe_log_topics(topics, "MCAP file");
   for (int variant = 0; variant < 3; ++variant) {
     io::LogReadOptions options;

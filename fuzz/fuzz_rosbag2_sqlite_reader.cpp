@@ -1,6 +1,6 @@
 // libFuzzer target: the bytes as a rosbag2 .db3 (SQLite) through io::list_rosbag2_sqlite_topics and
-// io::read_rosbag2_sqlite_imu (io/rosbag2_sqlite_reader.h): the default topic, a named one, both time
-// sources and dropping NaN/Inf. Only InputError / AnalysisError may escape.
+// io::read_rosbag2_sqlite_imu (io/rosbag2_sqlite_reader.h): the default topic, a named one, both
+// time sources and dropping NaN/Inf. Only InputError / AnalysisError may escape.
 #include <cstddef>
 #include <cstdint>
 #include <string>

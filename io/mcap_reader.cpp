@@ -19,7 +19,6 @@ namespace imunoise::io {
 namespace {
 
 // Record opcodes (mcap.dev/spec, "Records").
-constexpr std::uint8_t kOpHeader = 0x01;
 constexpr std::uint8_t kOpFooter = 0x02;
 constexpr std::uint8_t kOpSchema = 0x03;
 constexpr std::uint8_t kOpChannel = 0x04;

@@ -11,6 +11,7 @@
 #include "io/mcap_reader.h"
 #include "io/rosbag1_reader.h"
 #include "io/rosbag2_sqlite_reader.h"
+#include "io/ulog_reader.h"
 
 namespace imunoise::io {
 
@@ -36,13 +37,15 @@ std::string_view recording_format_name(RecordingFormat format) {
       return "MCAP file";
     case RecordingFormat::kRosbag2Sqlite:
       return "rosbag2 .db3";
+    case RecordingFormat::kUlog:
+      return "ULog file";
   }
   return "?";
 }
 
 bool is_robotics_log(RecordingFormat format) {
   return format == RecordingFormat::kRosbag1 || format == RecordingFormat::kMcap ||
-         format == RecordingFormat::kRosbag2Sqlite;
+         format == RecordingFormat::kRosbag2Sqlite || format == RecordingFormat::kUlog;
 }
 
 bool is_lcm_log_file(const std::string& path) {
@@ -62,6 +65,7 @@ RecordingFormat detect_recording_format(const std::string& path) {
   if (head.starts_with("#ROSBAG V")) return RecordingFormat::kRosbag1;
   if (head.starts_with(kMcapMagic)) return RecordingFormat::kMcap;
   if (head.starts_with(kSqliteMagic)) return RecordingFormat::kRosbag2Sqlite;
+  if (head.starts_with(kUlogMagic)) return RecordingFormat::kUlog;
   return RecordingFormat::kTable;
 }
 
@@ -110,7 +114,8 @@ pipeline::Recording read_recording_as(RecordingFormat format, const std::string&
       return read_recording(path, config, progress, threads);
     case RecordingFormat::kRosbag1:
     case RecordingFormat::kMcap:
-    case RecordingFormat::kRosbag2Sqlite: {
+    case RecordingFormat::kRosbag2Sqlite:
+    case RecordingFormat::kUlog: {
       LogReadOptions options;
       options.drop_non_finite = config.drop_non_finite.value_or(false);
       return read_robotics_log_as(format, path, options);
@@ -138,6 +143,7 @@ std::vector<LogTopic> list_log_topics(RecordingFormat format, const std::string&
   IMUNOISE_EXPECT(is_robotics_log(format), "list_log_topics: not a robotics log format");
   if (format == RecordingFormat::kMcap) return list_mcap_topics(path);
   if (format == RecordingFormat::kRosbag2Sqlite) return list_rosbag2_sqlite_topics(path);
+  if (format == RecordingFormat::kUlog) return list_ulog_topics(path);
   return list_rosbag1_topics(path);
 }
 
@@ -146,6 +152,7 @@ pipeline::Recording read_robotics_log_as(RecordingFormat format, const std::stri
   IMUNOISE_EXPECT(is_robotics_log(format), "read_robotics_log_as: not a robotics log format");
   if (format == RecordingFormat::kMcap) return read_mcap_imu(path, options);
   if (format == RecordingFormat::kRosbag2Sqlite) return read_rosbag2_sqlite_imu(path, options);
+  if (format == RecordingFormat::kUlog) return read_ulog_imu(path, options);
   return read_rosbag1_imu(path, options);
 }
 

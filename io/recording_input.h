@@ -2,9 +2,10 @@
 /// @brief Reading a recording whatever its format: a CSV/TXT table (io/csv_reader.h), an LCM
 /// log written by lcm-logger (io/lcm_log.h), an imunoise binary recording
 /// (io/binary_recording.h) or a robotics log — a ROS 1 bag (io/rosbag1_reader.h), an MCAP file
-/// (io/mcap_reader.h), a rosbag2 .db3 (io/rosbag2_sqlite_reader.h) — told apart by content (the
-/// log's sync word, the binary magic, the bag's first line, the MCAP magic, the SQLite header)
-/// or, for an output, by the file name. Which settings apply to which
+/// (io/mcap_reader.h), a rosbag2 .db3 (io/rosbag2_sqlite_reader.h), a PX4 ULog
+/// (io/ulog_reader.h) — told apart by content (the log's sync word, the binary magic, the bag's
+/// first line, the MCAP magic, the SQLite header, the ULog magic) or, for an output, by the file
+/// name. Which settings apply to which
 /// format is the caller's to check (the CLI refuses the flags that do not apply, naming them).
 #pragma once
 
@@ -29,9 +30,10 @@ enum class RecordingFormat {
   kRosbag1,        ///< ROS 1 bag (format 2.0)
   kMcap,           ///< MCAP (ROS 2's default bag storage)
   kRosbag2Sqlite,  ///< rosbag2 sqlite3 storage (.db3)
+  kUlog,           ///< PX4 ULog (.ulg)
 };
 
-/// "CSV", "LCM log", "binary", "ROS 1 bag", "MCAP file", "rosbag2 .db3".
+/// "CSV", "LCM log", "binary", "ROS 1 bag", "MCAP file", "rosbag2 .db3", "ULog file".
 std::string_view recording_format_name(RecordingFormat format);
 
 /// True for the robotics logs (ROS bags, ...), whose topics --topic selects.
@@ -43,7 +45,7 @@ bool is_lcm_log_file(const std::string& path);
 /// The format of the file at PATH by its first bytes: kBinary when it starts with
 /// kBinaryMagic, kLcmLog with the LCM sync word, kRosbag1 with "#ROSBAG V" (any version: the
 /// reader names the one it does not read), kMcap with the MCAP magic, kRosbag2Sqlite with the
-/// SQLite header, else kTable.
+/// SQLite header, kUlog with the ULog magic, else kTable.
 RecordingFormat detect_recording_format(const std::string& path);
 
 /// The format a file name asks for: kBinary for .imnb, kTable for .csv/.txt, kLcmLog for

@@ -64,7 +64,7 @@ void add_channels_and_report(Recording& rec, std::array<std::vector<double>, 6>&
     ch.name = std::move(name);
     ch.kind = kind;
     ch.source_unit = std::move(source_unit);
-    ch.source_column = channel + "." + field;
+    ch.source_column = channel.empty() ? field : channel + "." + field;
     ch.from_increments = from_inc;
     ch.values = std::move(v);
     if (from_inc) {
@@ -128,9 +128,10 @@ Recording recording_from_stamped_samples(StampedImuColumns samples, const std::s
             ? (static_cast<double>(samples.stamp_ns[i]) - static_cast<double>(first)) * 1e-9
             : static_cast<double>(diff) * 1e-9;
   }
-  add_channels_and_report(rec, samples.values, samples.source_fields, samples.source_units, false,
-                          nullptr, "", topic,
-                          "the " + stamp_name + " stamps of topic '" + topic + "' never increase");
+  add_channels_and_report(
+      rec, samples.values, samples.source_fields, samples.source_units, false, nullptr, "", topic,
+      "the " + stamp_name + " stamps" +
+          (topic.empty() ? std::string() : " of topic '" + topic + "'") + " never increase");
   rec.report.non_finite_dropped = samples.non_finite_dropped;
   rec.report.rows_dropped = samples.rows_dropped;
   return rec;

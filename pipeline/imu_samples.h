@@ -69,9 +69,10 @@ struct StampedImuColumns {
 
 /// The Recording of `samples`, built as recording_from_imu_samples builds it (time_s relative to
 /// the first stamp, exact to the ns; sample period from the intervals; channels gyro_x …
-/// accel_z with source_column "TOPIC.FIELD"; the sampling report). STAMP_NAME names the stamps
-/// in the error for stamps that never increase ("header.stamp", "log time"). Throws InputError
-/// (naming `source_path`) for fewer than 2 samples or stamps that never increase.
+/// accel_z with source_column "TOPIC.FIELD", or FIELD when TOPIC is empty; the sampling report).
+/// STAMP_NAME names the stamps in the error for stamps that never increase ("header.stamp", "log
+/// time"). Throws InputError (naming `source_path`) for fewer than 2 samples or stamps that never
+/// increase.
 Recording recording_from_stamped_samples(StampedImuColumns samples, const std::string& source_path,
                                          const std::string& topic, const std::string& stamp_name);
 

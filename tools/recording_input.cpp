@@ -175,12 +175,12 @@ void add_log_input_options(CLI::App& cmd, LogInputFlags& flags) {
   cmd.add_option("--lcm-struct", flags.struct_name,
                  "struct of --lcm-type to use, 'package.name' or 'name' (default: the only one)")
       ->group(group);
-  const std::string robotics = "Robotics logs (ROS 1 bags, MCAP, rosbag2 .db3)";
+  const std::string robotics = "Robotics logs (ROS 1 bags, MCAP, rosbag2 .db3, PX4 ULog)";
   cmd.add_option("--topic", flags.topic,
                  "IMU topic of a robotics log (default: its only sensor_msgs/Imu topic)")
       ->group(robotics);
   cmd.add_option("--instance", flags.instance,
-                 "instance of a multi-instance topic (PX4 ULog; no reader yet)")
+                 "instance (multi_id) of a PX4 ULog topic, e.g. --topic sensor_gyro --instance 1")
       ->group(robotics);
   cmd.add_option("--time-source", flags.time_source,
                  "stamps of a robotics log: header (the message's header.stamp, default) or log "

@@ -83,6 +83,23 @@ TEST(RoboticsLogCli, AnalyzeOnARosbag2DatabaseGivesTheModelOfTheCsvOfTheSameSamp
                        test::make_temp_dir("robotics_cli"));
 }
 
+TEST(RoboticsLogCli, AnalyzeOnAUlogGivesTheModelOfTheCsvOfTheSameSamples) {
+  IMUNOISE_REQUIRE_FIXTURE(file, "node", "ulog", "analyze.ulg");
+  expect_same_analysis(file, test::fixture_dir("ulog") / "analyze.csv",
+                       test::make_temp_dir("robotics_cli"));
+}
+
+TEST(RoboticsLogCli, UlogInstanceSelectsTheImu) {
+  IMUNOISE_REQUIRE_FIXTURE(file, "node", "ulog", "imu.ulg");
+  const auto chosen =
+      run_imunoise("check " + quoted_for_shell(file) + " --topic sensor_gyro --instance 1");
+  ASSERT_EQ(chosen.exit_code, 0) << chosen.err;
+  EXPECT_THAT(chosen.out, HasSubstr("samples:    1200"));
+  const auto several = run_imunoise("check " + quoted_for_shell(file) + " --topic sensor_gyro");
+  EXPECT_EQ(several.exit_code, 2);
+  EXPECT_THAT(several.err, HasSubstr("has several instances, which one?"));
+}
+
 TEST(RoboticsLogCli, CheckAllanAndConvertReadABag) {
   IMUNOISE_REQUIRE_FIXTURE(bag, "rosbag1", "rosbag1", "imu_lz4.bag");
   const fs::path dir = test::make_temp_dir("robotics_cli");
