@@ -149,7 +149,9 @@ class McapFile {
             file_.path(), offset);
         while (!entries.at_end()) {
           const std::uint16_t id = entries.u16("channel id");
-          counts[id] = static_cast<std::int64_t>(entries.u64("message count"));
+          // The file's word: no more messages than bytes (keeps the sums of counts in range).
+          counts[id] =
+              static_cast<std::int64_t>(std::min(entries.u64("message count"), file_.size()));
         }
         statistics_ = true;
       } else if (op == kOpChunkIndex) {

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -21,6 +23,8 @@ constexpr std::uint64_t kHeaderBytes = 16;  // magic 7, version 1, timestamp 8
 constexpr std::uint64_t kMessageHead = 3;   // uint16 msg_size, uint8 msg_type
 constexpr std::int64_t kNsPerUs = 1000;
 constexpr std::string_view kFileKind = "ULog file";
+// The largest µs stamp whose ns value fits in int64 (about 292 years after boot).
+constexpr std::uint64_t kMaxStampUs = static_cast<std::uint64_t>(INT64_MAX / kNsPerUs);
 
 using Bytes = std::span<const std::uint8_t>;
 
@@ -195,6 +199,9 @@ void append_samples(const Layout& l, Bytes data, std::uint64_t offset, const Ulo
       !read_ulog_u64(data, *l.timestamp_sample, ts_sample)) {
     short_message();
   }
+  if (ts > kMaxStampUs || ts_sample > kMaxStampUs) {
+    file.fail(offset, "a timestamp beyond " + std::to_string(kMaxStampUs) + " µs");
+  }
   const auto t_sample = static_cast<std::int64_t>(ts_sample) * kNsPerUs;
   const auto t_log = static_cast<std::int64_t>(ts) * kNsPerUs;
   if (l.samples == nullptr) {
@@ -212,6 +219,10 @@ void append_samples(const Layout& l, Bytes data, std::uint64_t offset, const Ulo
       !read_ulog_number(data, *l.scale, 0, scale)) {
     short_message();
   }
+  if (!(dt_us >= 0.0 && dt_us <= 1e6)) {
+    file.fail(offset,
+              "a FIFO message with dt " + std::to_string(dt_us) + " µs (expected 0 to 1 s)");
+  }
   const auto count = static_cast<std::size_t>(n);
   if (count > l.xyz[0]->count) {
     file.fail(offset, "a FIFO message of " + std::to_string(count) + " samples, its arrays hold " +
@@ -226,6 +237,7 @@ void append_samples(const Layout& l, Bytes data, std::uint64_t offset, const Ulo
     // Sample i of n: timestamp_sample is the last one's time.
     const auto back = static_cast<std::int64_t>(static_cast<double>(count - 1 - i) * dt_us *
                                                 static_cast<double>(kNsPerUs));
+    if (back > t_sample) file.fail(offset, "a FIFO sample before time 0");
     out.t_sample.push_back(t_sample - back);
     out.t_log.push_back(t_log);
     out.xyz.push_back(v);
@@ -359,6 +371,8 @@ pipeline::Recording read_ulog_imu(const std::string& path, const LogReadOptions&
       file.fail(offset, "a sensor_combined message of " + std::to_string(data.size()) +
                             " bytes is too short for its format");
     }
+    if (ts > kMaxStampUs)
+      file.fail(offset, "a timestamp beyond " + std::to_string(kMaxStampUs) + " µs");
     message.stamp_ns = static_cast<std::int64_t>(ts) * kNsPerUs;
     if (const std::string* bad = samples.add(message, message.stamp_ns)) {
       file.fail(offset, "non-finite value in sensor_combined." + *bad +
