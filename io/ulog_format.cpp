@@ -79,8 +79,11 @@ std::string UlogFormats::add(std::string_view text) {
     return "format " + quoted_bytes(text) + " has no \"name:\"";
   }
   const std::string name(text.substr(0, colon));
-  texts_[name] = std::string(text.substr(colon + 1));
-  resolved_.erase(name);
+  // Once laid out, a format's fields are pointed to (readers keep them): a second definition
+  // is refused rather than replacing them.
+  if (!texts_.emplace(name, std::string(text.substr(colon + 1))).second) {
+    return "format " + quoted_bytes(name) + " is defined twice";
+  }
   return {};
 }
 

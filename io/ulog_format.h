@@ -40,7 +40,8 @@ struct UlogFormat {
 class UlogFormats {
  public:
   /// Adds the format of the text TEXT ("name:type field;…"); an error text when it does not
-  /// parse (empty when it does). Nested types are resolved on use (resolve()).
+  /// parse or its name has a format already (empty when it is added). Nested types are
+  /// resolved on use (resolve()); the formats resolve() returns stay valid while this lives.
   std::string add(std::string_view text);
 
   /// Lays out format NAME (its nested formats recursively); nullptr with ERROR when a type is

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "io/ulog_format.h"
 #include "robotics_log_fixtures.h"
 #include "test_support.h"
 
@@ -122,6 +123,23 @@ TEST(UlogReader, MalformedFilesAreErrorsAtTheByteOffset) {
   const fs::path text = test::write_fixture_bytes(dir, "text.ulg", "time,gyro\n");
   EXPECT_THAT(test::error_of([&] { (void)list_ulog_topics(text.string()); }),
               HasSubstr("byte offset 0: not a ULog file"));
+}
+
+// Found by fuzz_ulog_reader: a second format message of a name already laid out freed the
+// fields its reader pointed to (a heap use-after-free under ASan); a redefinition is now an
+// error.
+TEST(UlogReader, RegressionAFormatDefinedTwiceIsAnError) {
+  const fs::path input =
+      fs::path(IMUNOISE_SOURCE_DIR) /
+      "fuzz/corpus/fuzz_ulog_reader/regression_format_redefined_use_after_free.ulg";
+  try {
+    (void)read_ulog_imu(input.string(), {});
+  } catch (const InputError&) {
+  } catch (const AnalysisError&) {
+  }
+  UlogFormats formats;
+  EXPECT_EQ(formats.add("a:float x;"), "");
+  EXPECT_EQ(formats.add("a:double x;"), "format 'a' is defined twice");
 }
 
 }  // namespace
