@@ -122,6 +122,45 @@ TEST(RoboticsLogCli, CheckAllanAndConvertReadABag) {
   EXPECT_THAT(back.out, HasSubstr("samples:    1200"));
 }
 
+TEST(RoboticsLogCli, LiveReplaysABagConvertedToAnLcmLog) {
+  // live reads LCM; a bag reaches it through convert (the log holds the bag's samples at µs
+  // stamps). One analysis at the end of the replay must give analyze's coefficients on the bag.
+  IMUNOISE_REQUIRE_FIXTURE(bag, "rosbag1", "rosbag1", "analyze.bag");
+  const fs::path dir = test::make_temp_dir("robotics_cli");
+  const auto convert =
+      run_imunoise("convert " + quoted_for_shell(bag) + " -q --lcm-channel IMU -o " +
+                   quoted_for_shell(dir / "bag.lcmlog"));
+  ASSERT_EQ(convert.exit_code, 0) << convert.err;
+  const auto live = run_imunoise(
+      "live --channel IMU --lcm-url " +
+      quoted_for_shell("file://" + (dir / "bag.lcmlog").string() + "?speed=0") + " --publish-url " +
+      quoted_for_shell("file://" + (dir / "out.lcmlog").string() + "?mode=w") +
+      " --every 100000s --bootstrap 0 -o " + quoted_for_shell(dir / "live"));
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  EXPECT_THAT(live.out, HasSubstr("received 60000, accepted 60000"));
+  const auto analyze = run_imunoise("analyze " + quoted_for_shell(bag) + " -q --bootstrap 0 -o " +
+                                    quoted_for_shell(dir / "analyze"));
+  ASSERT_EQ(analyze.exit_code, 0) << analyze.err;
+  // The coefficient lines (value, interval ends) of the two models.
+  const auto coefficients = [](const std::string& yaml) {
+    std::string lines;
+    std::size_t start = 0;
+    while (start < yaml.size()) {
+      std::size_t end = yaml.find('\n', start);
+      if (end == std::string::npos) end = yaml.size();
+      const std::string line = yaml.substr(start, end - start);
+      if (line.find("value:") != std::string::npos || line.find("ci_") != std::string::npos) {
+        lines += line + "\n";
+      }
+      start = end + 1;
+    }
+    return lines;
+  };
+  const std::string expected = coefficients(read_file_bytes(dir / "analyze" / "model.yaml"));
+  ASSERT_THAT(expected, HasSubstr("value:"));
+  EXPECT_EQ(coefficients(read_file_bytes(dir / "live" / "model.yaml")), expected);
+}
+
 TEST(RoboticsLogCli, TopicErrorsListTopicsTypesAndCounts) {
   IMUNOISE_REQUIRE_FIXTURE(two, "rosbag1", "rosbag1", "two_imus.bag");
   const auto ambiguous = run_imunoise("check " + quoted_for_shell(two));
