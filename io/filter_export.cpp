@@ -11,16 +11,25 @@
 #include "common/number_text.h"
 #include "common/sensor_kind.h"
 #include "common/units.h"
+#include "io/filter_export_internal.h"
 #include "io/noise_model_yaml.h"
 
 namespace imunoise::io {
 namespace {
 
+using detail::bracketed;
+using detail::Config;
+using detail::kMilliGal;
+using detail::need;
+using detail::per_sample;
+using detail::real;
+using detail::rw_only;
+using detail::RwOnly;
+using detail::Slot;
+using detail::triple;
 using models::FilterParameters;
 using models::SensorAxisParameters;
 using models::SensorParameters;
-
-constexpr double kMilliGal = 1e-5;  // m/s² per mGal (KF-GINS abstd)
 
 struct FormatInfo {
   ExportFormat format;
@@ -28,7 +37,7 @@ struct FormatInfo {
   const char* file_name;
   const char* consumer;
 };
-constexpr std::array<FormatInfo, 11> kFormats{{
+constexpr std::array<FormatInfo, 18> kFormats{{
     {ExportFormat::native, "native", "model.yaml", "imunoise native model.yaml"},
     {ExportFormat::kalibr, "kalibr", "kalibr_imu.yaml", "Kalibr (imu.yaml)"},
     {ExportFormat::openvins, "openvins", "kalibr_imu_chain.yaml",
@@ -43,144 +52,22 @@ constexpr std::array<FormatInfo, 11> kFormats{{
     {ExportFormat::px4, "px4", "px4_ekf2.params", "PX4 EKF2 (QGroundControl parameter file)"},
     {ExportFormat::robot_localization, "robot_localization", "robot_localization_ekf.yaml",
      "robot_localization (ekf.yaml)"},
+    {ExportFormat::lio_sam, "lio-sam", "lio_sam_params.yaml", "LIO-SAM (config/params.yaml)"},
+    {ExportFormat::fast_lio, "fast-lio", "fast_lio_mapping.yaml",
+     "FAST-LIO / FAST-LIO2 (config/*.yaml mapping block)"},
+    {ExportFormat::basalt, "basalt", "basalt_imu_calib.json", "Basalt (calibration JSON)"},
+    {ExportFormat::gtsam, "gtsam", "gtsam_preintegration.yaml",
+     "GTSAM PreintegrationCombinedParams"},
+    {ExportFormat::ardupilot, "ardupilot", "ardupilot_ekf3.parm", "ArduPilot EKF3 (.parm)"},
+    {ExportFormat::kimera, "kimera", "kimera_ImuParams.yaml", "Kimera-VIO (ImuParams.yaml)"},
+    {ExportFormat::imu_utils, "imu_utils", "imu_utils_imu_param.yaml",
+     "imu_utils (<name>_imu_param.yaml)"},
 }};
 
 const FormatInfo& info(ExportFormat format) {
   for (const auto& f : kFormats)
     if (f.format == format) return f;
   return kFormats[0];
-}
-
-/// Six significant digits, always with a decimal point and a lowercase exponent: OpenCV's
-/// FileStorage (OpenVINS, VINS, ORB-SLAM3, OKVIS) reads "200" as an integer and "1E-3" as 1,
-/// and PyYAML (Kalibr) reads "1e-05" as a string; "1.0e-05" and "200.0" are reals to all.
-std::string real(double x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  std::string s(buffer);
-  if (s.find_first_of("ni") != std::string::npos || s.find('.') != std::string::npos) return s;
-  const auto e = s.find('e');
-  if (e == std::string::npos) return s + ".0";
-  return s.insert(e, ".0");
-}
-
-/// "[I]" or "(I)" — built piecewise (GCC 12 warns falsely on "[" + std::to_string(i)).
-std::string bracketed(int i, char open, char close) {
-  std::string s(1, open);
-  s += std::to_string(i);
-  s += close;
-  return s;
-}
-
-/// The header and body of one config under construction.
-class Config {
- public:
-  Config(std::string comment, const models::NoiseModel& model, const ExportRequest& request,
-         double rate_hz)
-      : comment_(std::move(comment)) {
-    const auto& fi = info(request.format);
-    line(std::string("imunoise export for ") + fi.consumer);
-    line(
-        "model: " + (request.model_path.empty() ? std::string("(in memory)") : request.model_path) +
-        " — sensor \"" + model.sensor_name + "\", fitted from \"" + model.source + "\", " +
-        real(model.duration_s) + " s at " + real(model.sample_rate_hz) + " Hz, written by " +
-        model.software);
-    if (!request.command.empty()) line("command: " + request.command);
-    line("rate of the discrete values below: " + real(rate_hz) +
-         " Hz (dt = " + real(1.0 / rate_hz) + " s)");
-    line("noise densities are two-sided (S = N^2, theory.md §1.2), as Kalibr's sigma_g");
-  }
-
-  void line(const std::string& text) { header_ << comment_ << ' ' << text << '\n'; }
-  void rules(const FilterParameters& p) {
-    line("rules:");
-    for (const auto& r : p.rules) line("  " + r);
-  }
-  /// One conversion: KEY = FORMULA = VALUE UNIT.
-  void conversion(const std::string& key, const std::string& formula, double value,
-                  const std::string& unit) {
-    conversions_.push_back(key + " = " + formula + " = " + real(value) + " " + unit);
-  }
-  std::ostringstream& body() { return body_; }
-
-  std::string text(const std::string& first_line = "") {
-    std::ostringstream out;
-    if (!first_line.empty()) out << first_line << '\n';
-    out << header_.str();
-    if (!conversions_.empty()) {
-      out << comment_ << " conversions (model SI values -> this file):\n";
-      for (const auto& c : conversions_) out << comment_ << "   " << c << '\n';
-    }
-    out << body_.str();
-    return out.str();
-  }
-
- private:
-  std::string comment_;
-  std::ostringstream header_, body_;
-  std::vector<std::string> conversions_;
-};
-
-const SensorParameters& need(const std::optional<SensorParameters>& s, SensorKind kind,
-                             ExportFormat format) {
-  if (!s)
-    throw InputError(std::string("the model has no ") + std::string(sensor_name(kind)) + " axes; " +
-                     std::string(export_format_name(format)) + " needs both sensors");
-  return *s;
-}
-
-std::string triple(const SensorParameters& s, double SensorAxisParameters::*m, double scale,
-                   const char* separator = ", ") {
-  return real(s.axes[0].*m / scale) + separator + real(s.axes[1].*m / scale) + separator +
-         real(s.axes[2].*m / scale);
-}
-
-/// Values and lines shared by the white + random-walk formats (Kalibr family).
-struct RwOnly {
-  double n_g, k_g, n_a, k_a;
-};
-RwOnly rw_only(const FilterParameters& p, Config& c, ExportFormat format, bool conservative) {
-  const auto& g = need(p.gyro, SensorKind::gyro, format).one();
-  const auto& a = need(p.accel, SensorKind::accel, format).one();
-  c.line(conservative
-             ? "this format has white noise and a random-walk bias only: B, GM, Q and R are "
-               "folded into N and K (rule above)"
-             : "this format has white noise and a random-walk bias only: B, GM terms, Q and R "
-               "are not carried (best estimates; --conservative folds them into N and K)");
-  if (!conservative && (g.bias_instability > 0.0 || a.bias_instability > 0.0))
-    c.line("  dropped: gyro B = " + real(g.bias_instability) +
-           " rad/s, accel B = " + real(a.bias_instability) +
-           " m/s^2 (do not put B into the random-walk keys: theory.md §1.4)");
-  return {g.rw_only_white_noise, g.rw_only_random_walk, a.rw_only_white_noise,
-          a.rw_only_random_walk};
-}
-
-/// One member of RwOnly: gyro or accel, white noise or random walk.
-enum class Slot { n_g, n_a, k_g, k_a };
-
-/// The white + RW pair as the per-sample σ of a discrete filter at RATE (N·√rate, K·√rate),
-/// with one header conversion line per key in the order given (VINS, PX4).
-RwOnly per_sample(Config& c, const RwOnly& v, double rate,
-                  std::initializer_list<std::pair<const char*, Slot>> keys) {
-  const double s = std::sqrt(rate);
-  const RwOnly d{v.n_g * s, v.k_g * s, v.n_a * s, v.k_a * s};
-  for (const auto& [key, slot] : keys) {
-    switch (slot) {
-      case Slot::n_g:
-        c.conversion(key, "N_g*sqrt(rate)", d.n_g, "rad/s");
-        break;
-      case Slot::n_a:
-        c.conversion(key, "N_a*sqrt(rate)", d.n_a, "m/s^2");
-        break;
-      case Slot::k_g:
-        c.conversion(key, "K_g*sqrt(rate)", d.k_g, "rad/s^2");
-        break;
-      case Slot::k_a:
-        c.conversion(key, "K_a*sqrt(rate)", d.k_a, "m/s^3");
-        break;
-    }
-  }
-  return d;
 }
 
 std::string kalibr_like(const models::NoiseModel& model, const ExportRequest& request,
@@ -195,9 +82,10 @@ std::string kalibr_like(const models::NoiseModel& model, const ExportRequest& re
           std::pair{v.k_a, "accelerometer_random_walk"},
           std::pair{v.n_g, "gyroscope_noise_density"}, std::pair{v.k_g, "gyroscope_random_walk"}})
       if (!(value > 0.0))
-        throw InputError(std::string("kalibr: ") + what +
-                         " would be 0 (the term was not identified) and Kalibr requires > 0; "
-                         "export with --conservative to use its upper bound");
+        throw InputError(
+            std::string("kalibr: ") + what +
+            " would be 0 (the model has neither a value nor an upper bound for it) and "
+            "Kalibr requires > 0");
   }
   const std::string n = request.parameters.conservative ? "N'" : "N";
   const std::string k = request.parameters.conservative ? "K'" : "K";
@@ -566,6 +454,10 @@ std::string robot_localization(const models::NoiseModel& model, const ExportRequ
 
 }  // namespace
 
+namespace detail {
+std::string_view export_consumer_name(ExportFormat format) { return info(format).consumer; }
+}  // namespace detail
+
 const std::vector<ExportFormat>& all_export_formats() {
   static const std::vector<ExportFormat> formats = [] {
     std::vector<ExportFormat> out;
@@ -583,20 +475,27 @@ std::optional<ExportFormat> parse_export_format(std::string_view name) {
   if (name == "kf_gins") return ExportFormat::kf_gins;
   if (name == "gnss_ins_sim") return ExportFormat::gnss_ins_sim;
   if (name == "robot-localization") return ExportFormat::robot_localization;
+  if (name == "lio_sam" || name == "liosam") return ExportFormat::lio_sam;
+  if (name == "fast_lio" || name == "fast-lio2" || name == "fastlio") return ExportFormat::fast_lio;
+  if (name == "ardupilot-ekf3" || name == "ekf3") return ExportFormat::ardupilot;
+  if (name == "kimera-vio") return ExportFormat::kimera;
+  if (name == "imu-utils") return ExportFormat::imu_utils;
   return std::nullopt;
 }
 
 std::string_view default_export_file_name(ExportFormat format) { return info(format).file_name; }
 
 double default_export_rate_hz(ExportFormat format, const models::NoiseModel& model) {
-  return format == ExportFormat::px4 ? 100.0 : model.sample_rate_hz;
+  if (format == ExportFormat::px4) return 100.0;
+  if (format == ExportFormat::ardupilot) return 1.0 / 0.012;  // EKF_TARGET_DT
+  return model.sample_rate_hz;
 }
 
-std::string export_config(const models::NoiseModel& model, const ExportRequest& request) {
+ExportOutput export_file(const models::NoiseModel& model, const ExportRequest& request) {
   if (request.format == ExportFormat::native) {
     if (request.parameters.conservative)
       throw InputError("--conservative does not apply to --to native (a lossless copy)");
-    return format_model_yaml(model);
+    return {format_model_yaml(model), {}};
   }
   if (request.rate_hz != 0.0 && !(request.rate_hz > 0.0 && std::isfinite(request.rate_hz)))
     throw InputError("the export rate must be > 0 Hz, got " +
@@ -607,32 +506,74 @@ std::string export_config(const models::NoiseModel& model, const ExportRequest& 
     throw InputError("the export rate must be > 0 Hz, got " + shortest_number_text(rate));
   auto options = request.parameters;
   options.filter_rate_hz = rate;
+  options.upper_bound_when_not_identified = !request.strict;
   const auto params = models::select_filter_parameters(model, options);
+  ExportOutput out;
+  for (const auto& line : detail::unidentified_lines(params, request.format, request.strict))
+    if (line.rfind("upper bound: ", 0) == 0 || line.rfind("not identified: ", 0) == 0)
+      out.warnings.push_back(std::string(export_format_name(request.format)) + ": " + line);
+  const detail::ExportContext x{model, request, params, rate, out.warnings};
   switch (request.format) {
     case ExportFormat::kalibr:
-      return kalibr_like(model, request, params, rate, false);
+      out.text = kalibr_like(model, request, params, rate, false);
+      break;
     case ExportFormat::openvins:
-      return kalibr_like(model, request, params, rate, true);
+      out.text = kalibr_like(model, request, params, rate, true);
+      break;
     case ExportFormat::vins:
-      return vins(model, request, params, rate);
+      out.text = vins(model, request, params, rate);
+      break;
     case ExportFormat::orbslam3:
-      return orbslam3(model, request, params, rate);
+      out.text = orbslam3(model, request, params, rate);
+      break;
     case ExportFormat::okvis:
-      return okvis(model, request, params, rate);
+      out.text = okvis(model, request, params, rate);
+      break;
     case ExportFormat::kf_gins:
-      return kf_gins(model, request, params, rate);
+      out.text = kf_gins(model, request, params, rate);
+      break;
     case ExportFormat::gnss_ins_sim:
-      return gnss_ins_sim(model, request, params, rate);
+      out.text = gnss_ins_sim(model, request, params, rate);
+      break;
     case ExportFormat::matlab:
-      return matlab(model, request, params, rate);
+      out.text = matlab(model, request, params, rate);
+      break;
     case ExportFormat::px4:
-      return px4(model, request, params, rate);
+      out.text = px4(model, request, params, rate);
+      break;
     case ExportFormat::robot_localization:
-      return robot_localization(model, request, params, rate);
+      out.text = robot_localization(model, request, params, rate);
+      break;
+    case ExportFormat::lio_sam:
+      out.text = detail::lio_sam(x);
+      break;
+    case ExportFormat::fast_lio:
+      out.text = detail::fast_lio(x);
+      break;
+    case ExportFormat::basalt:
+      out.text = detail::basalt(x);
+      break;
+    case ExportFormat::gtsam:
+      out.text = detail::gtsam(x);
+      break;
+    case ExportFormat::ardupilot:
+      out.text = detail::ardupilot(x);
+      break;
+    case ExportFormat::kimera:
+      out.text = detail::kimera(x);
+      break;
+    case ExportFormat::imu_utils:
+      out.text = detail::imu_utils(x);
+      break;
     case ExportFormat::native:
+      out.text = format_model_yaml(model);
       break;
   }
-  return format_model_yaml(model);
+  return out;
+}
+
+std::string export_config(const models::NoiseModel& model, const ExportRequest& request) {
+  return export_file(model, request).text;
 }
 
 }  // namespace imunoise::io

@@ -47,11 +47,30 @@ GaussMarkov bias_as_gm(const AxisModel& axis, double chosen_b, const FilterParam
   return {sigma, largest->value.tau_c_s};
 }
 
+/// Whether the upper bound of T may stand in for it on AXIS when it is not identified (best
+/// estimates): B only without a fitted GM (which then stands for the bias) and with a τ of the
+/// ADEV minimum (its GM form needs one).
+bool may_bound(const AxisModel& axis, NoiseTerm t) {
+  if (t != NoiseTerm::bias_instability) return true;
+  return axis.gauss_markov.empty() && axis.tau_min_adev_s > 0.0;
+}
+
 SensorAxisParameters one_axis(const AxisModel& axis, const FilterParameterOptions& o) {
   SensorAxisParameters p;
   p.from = axis.name;
-  const auto value = [&](NoiseTerm t) { return chosen(axis.terms[t], o.conservative); };
-  for (NoiseTerm t : kNoiseTerms) coefficient(p, t) = value(t);
+  for (NoiseTerm t : kNoiseTerms) {
+    const Estimate& e = axis.terms[t];
+    double v = chosen(e, o.conservative);
+    if (!e.identified) {
+      UnidentifiedTerm u{axis.name, t, e.ci_high > 0.0 ? e.ci_high : 0.0, false};
+      if (!o.conservative && o.upper_bound_when_not_identified && !(e.value > 0.0) &&
+          u.upper_bound > 0.0 && may_bound(axis, t))
+        v = u.upper_bound;
+      u.substituted = u.upper_bound > 0.0 && v == u.upper_bound;
+      p.unidentified.push_back(u);
+    }
+    coefficient(p, t) = v;
+  }
   p.bias_gm = bias_as_gm(axis, p.bias_instability, o);
   if (!o.conservative) {
     p.rw_only_white_noise = p.white_noise;
@@ -85,6 +104,8 @@ SensorParameters combine(const std::vector<SensorAxisParameters>& axes, SensorKi
     return out;
   }
   SensorAxisParameters p;
+  for (const auto& a : axes)
+    p.unidentified.insert(p.unidentified.end(), a.unidentified.begin(), a.unidentified.end());
   std::string names;
   for (const auto& a : axes) names += (names.empty() ? "" : ", ") + a.from;
   using Member = double SensorAxisParameters::*;
@@ -209,6 +230,9 @@ FilterParameters select_filter_parameters(const NoiseModel& model,
                           ? "values: conservative — the upper end of each " +
                                 shortest_number_text(100.0 * model.confidence) +
                                 " % interval (a term not identified: its upper bound)"
+                      : options.upper_bound_when_not_identified
+                          ? "values: best estimates (the point values of the model; a term not "
+                            "identified: its upper bound)"
                           : "values: best estimates (the point values of the model)");
   out.gyro = sensor_parameters(model, SensorKind::gyro, options, out.rules);
   out.accel = sensor_parameters(model, SensorKind::accel, options, out.rules);

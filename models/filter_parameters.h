@@ -48,7 +48,21 @@ struct FilterParameterOptions {
   double correction_interval_s = 0.0;
   /// The rate the filter runs at [Hz], > 0: bounds the quantization fold (τ ≥ 1/rate).
   double filter_rate_hz = 0.0;
+  /// false: a term not identified keeps its value 0 in the best estimates. true: its upper
+  /// bound (Estimate::ci_high, when > 0) takes its place, so a short recording (K not
+  /// identified) still gives every term a usable number; B is bounded so only when the axis has
+  /// no fitted GM term and a τ of the ADEV minimum for its GM form. Each substitution is listed
+  /// in SensorAxisParameters::unidentified. Conservative sets always use upper bounds.
+  bool upper_bound_when_not_identified = false;
   FilterSettingNames setting_names;  ///< the names messages and rule lines give axis and T
+};
+
+/// A term of a model axis that is not identified (Estimate::identified false).
+struct UnidentifiedTerm {
+  std::string axis;  ///< the model axis, e.g. "gyro_x"
+  NoiseTerm term = NoiseTerm::random_walk;
+  double upper_bound = 0.0;  ///< the model's ci_high for it [SI]; 0: the model has none
+  bool substituted = false;  ///< true: upper_bound is the value used in its place
 };
 
 /// The numbers of one axis slot of one sensor (SI: rad… for a gyro, m/s… for an accel).
@@ -61,6 +75,8 @@ struct SensorAxisParameters : NoiseCoefficients {
   /// White density and RW density for a filter with only those two (Kalibr, VINS, …):
   /// best = N, K; conservative = N, K with B, GM, Q and R folded in.
   double rw_only_white_noise = 0.0, rw_only_random_walk = 0.0;
+  /// The terms not identified on the axes these values come from (every axis combined).
+  std::vector<UnidentifiedTerm> unidentified;
 };
 
 /// One sensor (gyro or accel): slot 0, 1, 2 = x, y, z (all three equal unless `each`).

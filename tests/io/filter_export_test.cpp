@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 
 #include "common/errors.h"
 #include "common/units.h"
+#include "io/filter_export_test_support.h"
 #include "io/noise_model_yaml.h"
 #include "test_support.h"
 
@@ -34,65 +36,18 @@ using models::AxisModel;
 using models::Estimate;
 using models::NoiseModel;
 using test::expect_throw_containing;
-
-Estimate estimate(double value, double low, double high) {
-  Estimate e;
-  e.value = value;
-  e.ci_low = low;
-  e.ci_high = high;
-  e.identified = value > 0.0;
-  e.method = "wnnls-oavar";
-  return e;
-}
-
-AxisModel axis(const std::string& name, SensorKind kind, double n, double b, double k) {
-  AxisModel a;
-  a.name = name;
-  a.kind = kind;
-  a.terms[static_cast<int>(NoiseTerm::quantization)] = estimate(0.0, 0.0, 0.1 * n);
-  a.terms[static_cast<int>(NoiseTerm::white_noise)] = estimate(n, 0.98 * n, 1.02 * n);
-  a.terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(b, 0.9 * b, 1.1 * b);
-  a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(k, 0.7 * k, 1.4 * k);
-  a.terms[static_cast<int>(NoiseTerm::ramp)] = estimate(0.0, 0.0, 0.0);
-  a.tau_min_adev_s = 29.6;
-  a.fit_tau_min_s = 0.005;
-  a.fit_tau_max_s = 3600.0;
-  return a;
-}
-
-/// The theory.md §8 gyro on all three axes (N = 0.4 deg/√h, B = 25.2 deg/h, K = 84.24
-/// deg/h/√h, B → GM (b) of §8.3: σ = 1.314e-4 rad/s, T_c = 15.6 s) and the assumed
-/// accelerometer of §8.5 (150 µg/√Hz; B 0.05 mg; K 1e-4 m/s^2.5).
-NoiseModel worked_example() {
-  NoiseModel m;
-  m.sensor_name = "theory.md §8 consumer MEMS";
-  m.source = "worked-example.csv";
-  m.sample_rate_hz = 200.0;
-  m.duration_s = 28800.0;
-  m.samples = 5760000;
-  for (const char* name : {"gyro_x", "gyro_y", "gyro_z"}) {
-    auto a = axis(name, SensorKind::gyro, 0.4 * units::kDegPerSqrtHour, 25.2 * units::kDegPerHour,
-                  84.24 * units::kDegPerHourPerSqrtHour);
-    a.bias_instability_gm.push_back({"peak_match", {1.314e-4, 15.6}});
-    m.axes.push_back(a);
-  }
-  for (const char* name : {"accel_x", "accel_y", "accel_z"})
-    m.axes.push_back(axis(name, SensorKind::accel, 150.0 * units::kMicroGPerSqrtHz,
-                          0.05 * units::kMilliG, 1e-4));
-  return m;
-}
-
-ExportRequest request(ExportFormat format, double rate_hz = 0.0, bool conservative = false) {
-  ExportRequest r;
-  r.format = format;
-  r.rate_hz = rate_hz;
-  r.parameters.conservative = conservative;
-  r.model_path = "worked-example.yaml";
-  r.command = "imunoise export worked-example.yaml --to " + std::string(export_format_name(format));
-  return r;
-}
+using test_fixture::estimate;
+using test_fixture::request;
+using test_fixture::worked_example;
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+/// Six significant digits with a decimal point, as the exports write numbers (1.36136e-05).
+std::string detail_real(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
 
 /// The number that follows MARKER in TEXT (std::stod stops at the first non-number
 /// character); NaN and a test failure when MARKER is absent. Plain string search: std::regex
@@ -288,16 +243,17 @@ TEST(FilterExport, ConservativeWritesTheFoldedOverbound) {
 
 TEST(FilterExport, ErrorsNameWhatIsMissing) {
   auto m = worked_example();
+  // No value and no upper bound: Kalibr rejects a zero random walk, so the export refuses.
   for (auto& a : m.axes)
-    a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(0.0, 0.0, 1e-6);
-  // Kalibr rejects a zero random walk; the error says how to get a usable file.
+    a.terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(0.0, 0.0, 0.0);
   expect_throw_containing<InputError>(
       [&] { export_config(m, request(ExportFormat::kalibr)); },
-      "_random_walk would be 0 (the term was not identified) and Kalibr requires > 0; "
-      "export with --conservative");
-  // The conservative export uses the upper bound instead.
-  const auto yaml = YAML::Load(export_config(m, request(ExportFormat::kalibr, 0.0, true)));
-  EXPECT_GT(yaml["gyroscope_random_walk"].as<double>(), 1e-6);
+      "kalibr: gyro_x random_walk (K) is not identified and the model has no upper bound for it");
+  // VINS accepts 0: it is written, and the header says so.
+  EXPECT_NE(export_config(m, request(ExportFormat::vins))
+                .find("# not identified: gyro_x random_walk (K) has neither a value nor an upper "
+                      "bound in the model: 0 is written"),
+            std::string::npos);
   auto gyro_only = worked_example();
   gyro_only.axes.resize(3);
   expect_throw_containing<InputError>(
@@ -307,6 +263,51 @@ TEST(FilterExport, ErrorsNameWhatIsMissing) {
   auto r = request(ExportFormat::vins);
   r.rate_hz = -5.0;
   EXPECT_THROW(export_config(worked_example(), r), InputError);
+}
+
+/// The worked example as a 30-min recording would give it: N and B identified, K not (its
+/// upper bound 2 K in the model, as ci_high).
+NoiseModel short_recording() {
+  auto m = worked_example();
+  for (auto& a : m.axes) {
+    auto& k = a.terms[static_cast<int>(NoiseTerm::random_walk)];
+    k = estimate(0.0, 0.0, 2.0 * k.value);
+  }
+  return m;
+}
+
+TEST(FilterExport, TermNotIdentifiedTakesItsUpperBoundByDefault) {
+  const auto m = short_recording();
+  const double k_g_bound = 2.0 * 84.24 * units::kDegPerHourPerSqrtHour;
+  // Every format yields a file; each one carrying K names the upper bound in its header and
+  // returns one warning per axis (three gyro, three accel: worst of the three).
+  for (auto format : all_export_formats()) {
+    if (format == ExportFormat::native) continue;
+    const auto out = export_file(m, request(format));
+    const auto carries_k = format != ExportFormat::kf_gins &&
+                           format != ExportFormat::gnss_ins_sim &&
+                           format != ExportFormat::imu_utils;
+    const std::string line =
+        "upper bound: gyro_x random_walk (K) is not identified; its upper "
+        "bound " +
+        detail_real(k_g_bound) + " rad/s^1.5 is used in its place";
+    EXPECT_EQ(out.text.find(line) != std::string::npos, carries_k) << export_format_name(format);
+    EXPECT_EQ(out.warnings.size(), carries_k ? 6u : 0u) << export_format_name(format);
+  }
+  // Kalibr, which used to refuse, now writes the upper bound.
+  const auto yaml = YAML::Load(export_config(m, request(ExportFormat::kalibr)));
+  EXPECT_LT(rel(yaml["gyroscope_random_walk"].as<double>(), k_g_bound), 1e-5);
+  EXPECT_LT(rel(yaml["accelerometer_random_walk"].as<double>(), 2e-4), 1e-5);
+  // --strict restores the refusal, naming format, term and axis.
+  auto strict = request(ExportFormat::kalibr);
+  strict.strict = true;
+  expect_throw_containing<InputError>(
+      [&] { export_config(m, strict); },
+      "kalibr: gyro_x random_walk (K) is not identified, and --strict refuses to use its upper "
+      "bound 1.36136e-05 rad/s^1.5");
+  // A format that does not carry K is not refused.
+  strict.format = ExportFormat::kf_gins;
+  EXPECT_NO_THROW(export_config(m, strict));
 }
 
 #ifdef IMUNOISE_HAVE_OPENCV
