@@ -28,6 +28,7 @@ struct ExportArgs {
   double rate_hz = 0.0;
   std::string axis = "worst";
   bool conservative = false;
+  bool strict = false;
   std::string gm_convention = "peak_match";
   double correction_interval_s = 0.0;
   std::string output;
@@ -52,6 +53,7 @@ std::string command_text(const ExportArgs& a, const std::string& to) {
   if (a.rate_hz > 0.0) s += " --rate " + shortest_number_text(a.rate_hz);
   if (a.axis != "worst") s += " --axis " + a.axis;
   if (a.conservative) s += " --conservative";
+  if (a.strict) s += " --strict";
   if (a.gm_convention != "peak_match") s += " --gm-convention " + a.gm_convention;
   if (a.correction_interval_s > 0.0)
     s += " --correction-interval " + shortest_number_text(a.correction_interval_s);
@@ -68,6 +70,11 @@ void run_export(const ExportArgs& a, bool axis_given) {
   request.parameters.correction_interval_s = a.correction_interval_s;
   request.parameters.setting_names = {"--axis", "--correction-interval"};
   request.model_path = a.model_path;
+  request.strict = a.strict;
+  // One warning per upper bound used in place of a term not identified (also in the header).
+  const auto warn = [](const io::ExportOutput& out) {
+    for (const auto& w : out.warnings) std::cerr << "imunoise: warning: " << w << '\n';
+  };
 
   if (a.to == "all") {
     if (a.output.empty()) throw InputError("--to all writes one file per format and needs -o DIR");
@@ -80,7 +87,9 @@ void run_export(const ExportArgs& a, bool axis_given) {
       request.command = command_text(a, std::string(io::export_format_name(format)));
       const auto path =
           (std::filesystem::path(a.output) / io::default_export_file_name(format)).string();
-      io::write_file_atomically(path, io::export_config(model, request));
+      const auto out = io::export_file(model, request);
+      warn(out);
+      io::write_file_atomically(path, out.text);
       std::cout << path << '\n';
     }
     write_command_file(a.output);
@@ -94,11 +103,12 @@ void run_export(const ExportArgs& a, bool axis_given) {
     throw InputError("--axis does not apply to --to native (a lossless copy of the model)");
   request.format = *format;
   request.command = command_text(a, a.to);
-  const std::string text = io::export_config(model, request);
+  const auto out = io::export_file(model, request);
+  warn(out);
   if (a.output.empty()) {
-    std::cout << text;
+    std::cout << out.text;
   } else {
-    io::write_file_atomically(a.output, text);
+    io::write_file_atomically(a.output, out.text);
   }
 }
 
@@ -117,7 +127,7 @@ void register_export_command(CLI::App& app) {
       ->required();
   sub->add_option("--rate", args->rate_hz,
                   "rate [Hz] of the discrete values (default: the model's sample rate; PX4: its "
-                  "100 Hz filter rate)")
+                  "100 Hz filter rate; ArduPilot: EKF3's 83.33 Hz step)")
       ->check(CLI::PositiveNumber);
   CLI::Option* axis =
       sub->add_option("--axis", args->axis,
@@ -127,6 +137,9 @@ void register_export_command(CLI::App& app) {
   sub->add_flag("--conservative", args->conservative,
                 "overbounding set: upper interval ends, and B/GM/Q/R folded into N and K for "
                 "white + random-walk filters (rule written into the file)");
+  sub->add_flag("--strict", args->strict,
+                "refuse a term the format carries that is not identified (default: its upper "
+                "bound, named in the header and warned about on stderr)");
   sub->add_option("--gm-convention", args->gm_convention,
                   "bias instability as one Gauss-Markov term (theory.md §4.4): "
                   "min_adev_at_tau_min, peak_match (default), sigma_equals_b")
