@@ -200,5 +200,39 @@ TEST(FilterParameters, MissingSensorIsAbsentNotAnError) {
   EXPECT_FALSE(p.accel.has_value());
 }
 
+TEST(FilterParameters, UpperBoundStandsInForATermNotIdentifiedWhenAsked) {
+  auto m = example_model();
+  // gyro_x: K and B not identified, bounded by 3e-6 and 2e-4; accel_x: B not identified with
+  // a fitted GM, which stands for the bias instead of the bound.
+  m.axes[0].terms[static_cast<int>(NoiseTerm::random_walk)] = estimate(0.0, 0.0, 3e-6);
+  m.axes[0].terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(0.0, 0.0, 2e-4);
+  m.axes[3].terms[static_cast<int>(NoiseTerm::bias_instability)] = estimate(0.0, 0.0, 1e-3);
+  m.axes[3].gauss_markov.push_back({{2e-4, 50.0}, 1.5e-4, 2.5e-4, 40.0, 60.0});
+  auto o = options(AxisChoice::x);
+  const auto off = select_filter_parameters(m, o);  // default: 0 stays 0
+  EXPECT_EQ(off.gyro->one().random_walk, 0.0);
+  EXPECT_EQ(off.gyro->one().bias_instability, 0.0);
+  ASSERT_EQ(off.gyro->one().unidentified.size(), 4u);  // Q, B, K, R
+  for (const auto& u : off.gyro->one().unidentified) EXPECT_FALSE(u.substituted);
+  o.upper_bound_when_not_identified = true;
+  const auto on = select_filter_parameters(m, o);
+  EXPECT_EQ(on.gyro->one().random_walk, 3e-6);
+  EXPECT_EQ(on.gyro->one().rw_only_random_walk, 3e-6);
+  EXPECT_EQ(on.gyro->one().bias_instability, 2e-4);
+  // The GM form of the bound B: the stored (b) conversion scaled by 2e-4 / B (B = 0 here, so
+  // computed afresh from τ of the ADEV minimum, 29.6 s): σ > 0 and T_c = 29.6/1.8926 s.
+  EXPECT_GT(on.gyro->one().bias_gm.sigma, 0.0);
+  EXPECT_NEAR(on.gyro->one().bias_gm.tau_c_s, 29.6 / 1.892618, 1e-3);
+  int substituted = 0;
+  for (const auto& u : on.gyro->one().unidentified) {
+    EXPECT_EQ(u.axis, "gyro_x");
+    if (u.substituted) ++substituted;
+  }
+  EXPECT_EQ(substituted, 2);                         // B and K (Q and R have no bound > 0 here)
+  EXPECT_EQ(on.accel->one().bias_instability, 0.0);  // the GM stands for it
+  EXPECT_EQ(on.accel->one().bias_gm.sigma, 2e-4);
+  EXPECT_NE(on.rules[0].find("a term not identified: its upper bound"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace imunoise::models
