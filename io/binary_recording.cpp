@@ -669,8 +669,10 @@ pipeline::Recording read_binary_recording(const std::string& path, const BinaryR
     timing.period_from_mean = timing.period_from_mean &&
                               std::fabs(rec.sample_period_s - timing.mean_interval_s) <=
                                   pipeline::kPeriodFromMeanThreshold * timing.median_interval_s;
+    // The stamps' own rate when they give the header's period (on a decimal grid that rate is
+    // exact: 400, where 1 / 0.0025 is 400 only by luck of rounding); else the header's.
+    if (timing.sample_period_s != rec.sample_period_s) timing.rate_hz = 1.0 / rec.sample_period_s;
     timing.sample_period_s = rec.sample_period_s;
-    timing.rate_hz = 1.0 / rec.sample_period_s;
   }
   rec.report.samples = static_cast<std::int64_t>(n);
   rec.report.timing = std::move(timing);

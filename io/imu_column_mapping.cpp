@@ -98,6 +98,21 @@ constexpr std::array<std::pair<std::string_view, AccelUnit>, 4> kAccelSuffixes{{
 }};
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 
+/// Stamps of UNIT per second, exactly (1 / si_factor is not exact for ns).
+double ticks_per_second(TimeUnit unit) {
+  switch (unit) {
+    case TimeUnit::kSecond:
+      return 1.0;
+    case TimeUnit::kMillisecond:
+      return 1e3;
+    case TimeUnit::kMicrosecond:
+      return 1e6;
+    case TimeUnit::kNanosecond:
+      return 1e9;
+  }
+  return 1.0;
+}
+
 /// A sensor group as mapped: column indices (x, y, z order) and the unit.
 template <typename Unit>
 struct GroupMapping {
@@ -247,9 +262,11 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     pipeline::require_min_samples(path, n, 2, "a sample rate from time stamps");
     const double factor = si_factor(time_unit);
     rec.time_s = std::move(data.columns[0]);
+    // Integer ns (µs, ms, s) stamps: the median interval exactly, from the integers.
+    const auto exact = pipeline::exact_tick_median(rec.time_s, ticks_per_second(time_unit));
     for (double& t : rec.time_s) t *= factor;
     rec.start_time_s = data.first_values[0] * factor;
-    timing = pipeline::analyze_timing(rec.time_s, options);
+    timing = pipeline::analyze_timing(rec.time_s, options, exact);
     if (!(timing.median_interval_s > 0.0)) {
       throw InputError(located_message(path, data.first_data_line, 0,
                                        "cannot estimate the sample rate: the time stamps never "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <optional>
 #include <span>
@@ -15,6 +16,7 @@
 #include "io/recording_csv_writer.h"
 #include "io/recording_lcm_writer.h"
 #include "io/simulation_setup.h"
+#include "pipeline/sampling_checks.h"
 
 namespace imunoise::io {
 
@@ -98,13 +100,22 @@ models::ImuSimulator make_simulator(const SimulationModelFile& setup, const Simu
 
 double simulated_sample_period_s(double rate_hz, std::int64_t samples) {
   IntervalMedian median;
+  // The decimal grids every stamp is on so far (bit d: pipeline::on_decimal_grid(t, d)).
+  unsigned grids = (1u << (pipeline::kMaxGridDigits + 1)) - 1;
   double previous = 0.0;
   for (std::int64_t k = 1; k < samples; ++k) {
     const double t = static_cast<double>(k) / rate_hz;
     median.add(t - previous);
     previous = t;
+    for (unsigned g = grids; g != 0; g &= g - 1) {
+      const int d = std::countr_zero(g);
+      if (!pipeline::on_decimal_grid(t, d)) grids &= ~(1u << d);
+    }
   }
-  return median.median().value_or(1.0 / rate_hz);
+  const std::optional<double> m = median.median();
+  if (!m) return 1.0 / rate_hz;
+  // As analyze_timing: the median on the stamps' decimal grid, when there is one.
+  return grids != 0 ? pipeline::snap_to_decimal_grid(*m, std::countr_zero(grids)) : *m;
 }
 
 BinaryRecordingHeader simulation_binary_header(const SimulationModelFile& setup,

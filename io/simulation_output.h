@@ -42,7 +42,8 @@ models::ImuSimulator make_simulator(const SimulationModelFile& setup, const Simu
 
 /// The sample period a read of the CSV output finds: the median of the intervals between the
 /// stamps k / RATE_HZ (k < SAMPLES) as pipeline::analyze_timing takes it (mean of the two
-/// middle values for an even count); 1 / RATE_HZ for a single sample.
+/// middle values for an even count; on the stamps' decimal grid when they have one, so 400 Hz
+/// gives 0.0025 exactly); 1 / RATE_HZ for a single sample.
 double simulated_sample_period_s(double rate_hz, std::int64_t samples);
 
 /// Header of a binary output: what converting the CSV output would give (channels gyro_x …

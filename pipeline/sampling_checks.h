@@ -120,8 +120,49 @@ struct ChannelSamples {
   std::optional<double> full_scale;  ///< |value| ≥ this is saturated [unit]
 };
 
-/// Time-stamp checks over `time_s` (any origin). Fewer than 2 stamps give rate 0.
-TimingReport analyze_timing(std::span<const double> time_s, const SamplingOptions& options = {});
+/// The median interval of integer stamps, exactly: stamps that are whole ticks of
+/// 1 / ticks_per_second s have whole-tick intervals, whose median is a whole or (even count)
+/// half number of ticks. Kept as 2 × that count and 2 × ticks per second, both exact integers,
+/// so the period and the rate are each one correctly rounded division.
+struct ExactMedianInterval {
+  double twice_ticks = 0.0;             ///< 2 × the median interval [ticks] (> 0)
+  double twice_ticks_per_second = 0.0;  ///< 2 × ticks per second
+  double seconds() const { return twice_ticks / twice_ticks_per_second; }
+  double rate_hz() const { return twice_ticks_per_second / twice_ticks; }
+};
+
+/// The exact median interval of TICKS (stamps counted in ticks of 1 / TICKS_PER_SECOND s, a
+/// power of ten: 1e9 for ns) when every value is a whole number of at most 2^53 in magnitude
+/// (the integer stamps' differences held exactly; the int64 arithmetic in doubles), and the
+/// median is positive; else nullopt. The median of the positive intervals when most are 0, as
+/// analyze_timing takes it.
+std::optional<ExactMedianInterval> exact_tick_median(std::span<const double> ticks,
+                                                     double ticks_per_second);
+
+/// Time-stamp checks over `time_s` (any origin). Fewer than 2 stamps give rate 0. The median
+/// interval is EXACT when given (exact_tick_median of the same stamps before their conversion to
+/// seconds: 200 Hz stamps 5 000 000 ns apart give 200 Hz); else, for stamps on a decimal grid
+/// (decimal_grid_digits: every stamp a whole number of 10^-d s, as text with at most d decimals
+/// gives), the median on the grid (snap_to_decimal_grid) and the rate 10^d / (whole steps), so
+/// stamps k·0.0025 s give 400 Hz, not 1 / (a median interval rounded in double).
+TimingReport analyze_timing(std::span<const double> time_s, const SamplingOptions& options = {},
+                            const std::optional<ExactMedianInterval>& exact = std::nullopt);
+
+/// @name Decimal grids of time stamps
+/// @{
+/// The most decimals a grid may have (ns).
+inline constexpr int kMaxGridDigits = 9;
+/// True when STAMP is a whole number of 10^-DIGITS (DIGITS in [0, kMaxGridDigits]) within 4 ulp
+/// of the scaled value, the rounding a parsed or computed stamp carries; false as well when that
+/// tolerance would reach 1/64 of a step (the grid cannot be told from rounding any more).
+bool on_decimal_grid(double stamp, int digits);
+/// The fewest DIGITS with every stamp on_decimal_grid, or nullopt (none up to kMaxGridDigits).
+std::optional<int> decimal_grid_digits(std::span<const double> stamps);
+/// MEDIAN, the median interval between stamps on the grid of DIGITS decimals, made exact: the
+/// nearest half-multiple of 10^-DIGITS (each interval is within 1/32 step of a whole number of
+/// steps, so that is the median of the exact intervals). Non-positive MEDIAN stays as it is.
+double snap_to_decimal_grid(double median, int digits);
+/// @}
 
 /// Timing for a fixed, given rate (no time stamps to check).
 TimingReport fixed_rate_timing(double rate_hz, std::int64_t samples);

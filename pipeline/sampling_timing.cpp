@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/errors.h"
 #include "common/sampling_gap.h"
 #include "pipeline/sampling_checks.h"
 #include "pipeline/sampling_checks_internal.h"
@@ -356,15 +357,13 @@ IntervalHistogram interval_histogram(std::span<const double> time_s, double medi
   return h;
 }
 
-}  // namespace
+/// 10^d for the grid digits.
+constexpr double kPow10[kMaxGridDigits + 1] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 
-TimingReport analyze_timing(std::span<const double> time_s, const SamplingOptions& options) {
-  TimingReport t;
-  t.has_timestamps = true;
-  const std::size_t n = time_s.size();
-  if (n < 2) return t;
-  const std::size_t m = n - 1;  // intervals
-
+/// The median of the intervals of T (sampled on long records), of the positive ones when it is
+/// not positive.
+double median_interval(std::span<const double> time_s) {
+  const std::size_t m = time_s.size() - 1;
   std::optional<double> sampled;
   if (m >= kSampledMedianMin) sampled = sampled_median(time_s);
   double median = 0.0;
@@ -384,8 +383,32 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
     }
     median = positive.empty() ? 0.0 : median_in_place(positive);
   }
+  return median;
+}
+
+}  // namespace
+
+TimingReport analyze_timing(std::span<const double> time_s, const SamplingOptions& options,
+                            const std::optional<ExactMedianInterval>& exact_median) {
+  TimingReport t;
+  t.has_timestamps = true;
+  const std::size_t n = time_s.size();
+  if (n < 2) return t;
+  const std::size_t m = n - 1;  // intervals
+
+  // Exact, on a decimal grid, or as the intervals give it. The first two are a whole or half
+  // number of steps: the period and the rate are then one division of exact integers.
+  std::optional<ExactMedianInterval> steps = exact_median;
+  double median = steps ? steps->seconds() : median_interval(time_s);
+  if (!steps && median > 0.0) {
+    if (const std::optional<int> digits = decimal_grid_digits(time_s)) {
+      const double twice = std::nearbyint(2.0 * median * kPow10[*digits]);
+      if (twice > 0.0) steps = ExactMedianInterval{twice, 2.0 * kPow10[*digits]};
+      median = snap_to_decimal_grid(median, *digits);
+    }
+  }
   t.median_interval_s = median;
-  t.rate_hz = median > 0.0 ? 1.0 / median : 0.0;
+  t.rate_hz = steps ? steps->rate_hz() : median > 0.0 ? 1.0 / median : 0.0;
   t.duration_s = time_s[n - 1] - time_s[0];
   t.mean_rate_hz = t.duration_s > 0.0 ? static_cast<double>(n - 1) / t.duration_s : 0.0;
 
@@ -455,6 +478,46 @@ TimingReport analyze_timing(std::span<const double> time_s, const SamplingOption
                                               std::max(sums.hi, hi), regular);
   }
   return t;
+}
+
+bool on_decimal_grid(double stamp, int digits) {
+  if (digits < 0 || digits > kMaxGridDigits || !std::isfinite(stamp)) return false;
+  const double x = stamp * kPow10[digits];
+  const double tolerance = 4.0 * std::numeric_limits<double>::epsilon() * std::fabs(x);
+  if (tolerance > 1.0 / 64.0) return false;
+  return std::fabs(x - std::nearbyint(x)) <= tolerance;
+}
+
+std::optional<int> decimal_grid_digits(std::span<const double> stamps) {
+  for (int digits = 0; digits <= kMaxGridDigits; ++digits) {
+    const bool all = std::all_of(stamps.begin(), stamps.end(),
+                                 [digits](double s) { return on_decimal_grid(s, digits); });
+    if (all) return digits;
+  }
+  return std::nullopt;
+}
+
+double snap_to_decimal_grid(double median, int digits) {
+  IMUNOISE_EXPECT(digits >= 0 && digits <= kMaxGridDigits, "snap_to_decimal_grid: digits");
+  if (!(median > 0.0)) return median;
+  const double twice_steps = std::nearbyint(2.0 * median * kPow10[digits]);
+  return twice_steps > 0.0 ? twice_steps / (2.0 * kPow10[digits]) : median;
+}
+
+std::optional<ExactMedianInterval> exact_tick_median(std::span<const double> ticks,
+                                                     double ticks_per_second) {
+  IMUNOISE_EXPECT(ticks_per_second > 0.0 && std::isfinite(ticks_per_second),
+                  "exact_tick_median: ticks_per_second");
+  if (ticks.size() < 2) return std::nullopt;
+  constexpr double kExact = 9007199254740992.0;  // 2^53
+  const bool whole = std::all_of(ticks.begin(), ticks.end(), [](double v) {
+    return std::fabs(v) <= kExact && v == std::nearbyint(v);
+  });
+  if (!whole) return std::nullopt;
+  // Whole-number intervals below 2^54 are exact; the median is one of them or the mean of two.
+  const double median = median_interval(ticks);
+  if (!(median > 0.0)) return std::nullopt;
+  return ExactMedianInterval{2.0 * median, 2.0 * ticks_per_second};
 }
 
 TimingReport fixed_rate_timing(double rate_hz, std::int64_t samples) {

@@ -185,8 +185,29 @@ inline Timing analyze_timing(const std::vector<double>& t, const SamplingOptions
   }
   double median = plain::median(intervals);
   if (!(median > 0.0)) median = positive.empty() ? 0.0 : plain::median(positive);
+  // The decimal grid (sampling_checks.h): the fewest decimals d <= 9 with every stamp within
+  // 4 ulp of a whole number of 10^-d s (that tolerance below 1/64 step); the median is then the
+  // nearest half step, the rate 10^d / steps.
+  std::optional<double> grid_scale;
+  for (int d = 0; d <= 9 && !grid_scale; ++d) {
+    const double scale = std::pow(10.0, d);
+    const bool all = std::all_of(t.begin(), t.end(), [scale](double s) {
+      const double x = s * scale;
+      const double tolerance = 4.0 * std::numeric_limits<double>::epsilon() * std::fabs(x);
+      return std::isfinite(x) && tolerance <= 1.0 / 64.0 &&
+             std::fabs(x - std::round(x)) <= tolerance;
+    });
+    if (all) grid_scale = scale;
+  }
+  double twice_steps = 0.0;
+  if (grid_scale && median > 0.0) {
+    twice_steps = std::round(2.0 * median * *grid_scale);
+    if (twice_steps > 0.0) median = twice_steps / (2.0 * *grid_scale);
+  }
   r.median_interval_s = median;
-  r.rate_hz = median > 0.0 ? 1.0 / median : 0.0;
+  r.rate_hz = twice_steps > 0.0 ? 2.0 * *grid_scale / twice_steps
+              : median > 0.0    ? 1.0 / median
+                                : 0.0;
   r.duration_s = t[n - 1] - t[0];
   r.mean_rate_hz = r.duration_s > 0.0 ? static_cast<double>(n - 1) / r.duration_s : 0.0;
   const double gap_limit = options.gap_factor * median;

@@ -3,10 +3,12 @@
 // the plain scan (sampling_reference_scans.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -107,6 +109,82 @@ TEST(AnalyzeTiming, SymmetricJitterAndGapsKeepTheMedian) {
 TEST(AnalyzeTiming, TooFewStampsGiveNoRate) {
   EXPECT_EQ(analyze_timing(std::vector<double>{1.0}).rate_hz, 0.0);
   EXPECT_EQ(analyze_timing(std::vector<double>{}).rate_hz, 0.0);
+}
+
+// --- exact rates -------------------------------------------------------------------------------
+
+TEST(AnalyzeTiming, DecimalStampsGiveTheirRateExactly) {
+  // k / 400 s, as simulate writes and reads back: the intervals in double scatter by ulps and
+  // their median was 0.0025000000000545697 s (399.99999999126885 Hz) on 2 h of stamps.
+  for (const std::size_t n : {std::size_t{1000}, std::size_t{2880000}}) {
+    std::vector<double> t(n);
+    for (std::size_t k = 0; k < n; ++k) t[k] = static_cast<double>(k) / 400.0;
+    const TimingReport r = analyze_timing(t);
+    EXPECT_EQ(r.rate_hz, 400.0) << n;
+    EXPECT_EQ(r.median_interval_s, 0.0025) << n;
+    EXPECT_EQ(r.sample_period_s, 0.0025) << n;
+    EXPECT_FALSE(r.period_from_mean);
+  }
+  // Whole µs with jitter of whole µs: the median on the µs grid; 1e6 / 2501 exactly.
+  std::vector<double> t;
+  for (int k = 0; k < 101; ++k) t.push_back((k * 2501 + (k % 2)) * 1e-6);
+  const TimingReport r = analyze_timing(t);
+  EXPECT_EQ(r.median_interval_s, 2501e-6);
+  EXPECT_EQ(r.rate_hz, 1e6 / 2501.0);
+}
+
+TEST(AnalyzeTiming, StampsOffEveryGridKeepTheirDoubleMedian) {
+  std::vector<double> t;
+  for (int k = 0; k < 50; ++k) t.push_back(k * 0.0025 + 1e-11 * (k % 3));
+  EXPECT_EQ(decimal_grid_digits(t), std::nullopt);
+  const TimingReport r = analyze_timing(t);
+  std::vector<double> d;
+  for (std::size_t i = 0; i + 1 < t.size(); ++i) d.push_back(t[i + 1] - t[i]);
+  std::nth_element(d.begin(), d.begin() + 24, d.end());
+  EXPECT_EQ(r.median_interval_s, d[24]);  // 49 intervals: the 25th smallest
+}
+
+TEST(DecimalGrid, FewestDecimalsAndTheToleranceOfRounding) {
+  EXPECT_EQ(decimal_grid_digits(std::vector<double>{0.0, 0.5, 1.0, 1.5}), 1);
+  EXPECT_EQ(decimal_grid_digits(std::vector<double>{0.0, 1.0, 7.0}), 0);
+  EXPECT_EQ(decimal_grid_digits(std::vector<double>{0.0, 0.0025, 0.005, 7199.9975}), 4);
+  EXPECT_EQ(decimal_grid_digits(std::vector<double>{0.0, 1.0 / 3.0}), std::nullopt);
+  EXPECT_TRUE(on_decimal_grid(0.1 + 0.2, 1));     // 0.30000000000000004: 1 ulp off 0.3
+  EXPECT_FALSE(on_decimal_grid(0.3 + 1e-12, 1));  // far beyond rounding
+  // 1.7e9 s (epoch) has ulps of 2.4e-7 s: a ns grid cannot be told from rounding there.
+  EXPECT_FALSE(on_decimal_grid(1.7e9, 9));
+  EXPECT_TRUE(on_decimal_grid(1.7e9, 0));
+  EXPECT_EQ(snap_to_decimal_grid(0.0025000000000545697, 4), 0.0025);
+  EXPECT_EQ(snap_to_decimal_grid(0.00150000000001, 3), 0.0015);  // half a step: even count
+}
+
+TEST(ExactTickMedian, IntegerNanosecondsGiveTheirRateHoweverLong) {
+  // 200 Hz ns stamps about 4e15 ns (46 days) from the first: in seconds the ns grid is lost
+  // (ulps of 4e6 s are 9e-10 s), and the median of double intervals is not 5 ms.
+  std::vector<double> ticks;
+  constexpr double kBase = 4e15;
+  ticks.push_back(0.0);
+  for (int k = 0; k < 2001; ++k) ticks.push_back(kBase + k * 5e6 + (k % 7 == 0 ? 37.0 : 0.0));
+  const std::optional<ExactMedianInterval> exact = exact_tick_median(ticks, 1e9);
+  ASSERT_TRUE(exact.has_value());
+  EXPECT_EQ(exact->twice_ticks, 1e7);
+  EXPECT_EQ(exact->rate_hz(), 200.0);
+  EXPECT_EQ(exact->seconds(), 0.005);
+  std::vector<double> seconds = ticks;
+  for (double& v : seconds) v *= 1e-9;
+  const TimingReport plain = analyze_timing(seconds);
+  EXPECT_NE(plain.rate_hz, 200.0);  // what the double median gives
+  const TimingReport r = analyze_timing(seconds, {}, exact);
+  EXPECT_EQ(r.rate_hz, 200.0);
+  EXPECT_EQ(r.median_interval_s, 0.005);
+  EXPECT_EQ(r.sample_period_s, 0.005);
+  EXPECT_EQ(r.gap_count, 1);  // the jump to kBase
+  // An even count of intervals: the mean of the two middle ones, a half tick.
+  EXPECT_EQ(exact_tick_median(std::vector<double>{0, 3, 7}, 1e9)->twice_ticks, 7.0);
+  // Not whole numbers, or no positive interval: no exact median.
+  EXPECT_EQ(exact_tick_median(std::vector<double>{0, 0.5, 1}, 1e9), std::nullopt);
+  EXPECT_EQ(exact_tick_median(std::vector<double>{5, 5, 5}, 1e9), std::nullopt);
+  EXPECT_EQ(exact_tick_median(std::vector<double>{0, 1e16}, 1e9), std::nullopt);  // > 2^53
 }
 
 TEST(FixedRateTiming, KnowsRateAndDuration) {
