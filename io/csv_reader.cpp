@@ -122,6 +122,7 @@ TableData TableReader::read(std::span<const ColumnRequest> columns, bool drop_no
   plan.delimiter = layout.delimiter;
   plan.separator = delimiter_char(layout.delimiter);
   plan.drop_non_finite = drop_non_finite;
+  plan.decimal_comma = layout.decimal_comma;
   plan.slot_of.assign(plan.column_count, -1);
   std::vector<std::size_t> output_slot(columns.size());
   for (std::size_t r = 0; r < columns.size(); ++r) {

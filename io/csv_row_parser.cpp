@@ -3,12 +3,29 @@
 #include "io/csv_row_parser.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "io/decimal_number.h"
 
 namespace imunoise::io::csv_detail {
 
 namespace {
+
+/// parse_double of [B, E) with its comma (at most one) read as the decimal point. Kept out of
+/// line: only decimal-comma tables take it.
+[[gnu::noinline]] bool parse_with_decimal_comma(const char* b, const char* e, double& out) {
+  const char* comma =
+      static_cast<const char*>(std::memchr(b, ',', static_cast<std::size_t>(e - b)));
+  if (comma == nullptr) return parse_double(b, e, out);
+  constexpr std::ptrdiff_t kMax = 64;  // longer is no number a table holds
+  if (e - b > kMax) return false;
+  char copy[kMax];
+  std::memcpy(copy, b, static_cast<std::size_t>(e - b));
+  copy[comma - b] = '.';
+  const char* c = copy;
+  return std::memchr(comma + 1, ',', static_cast<std::size_t>(e - comma - 1)) == nullptr &&
+         parse_double(c, c + (e - b), out);
+}
 
 /// Converts field J = [b, e) (trimmed) of the line starting at LINE_BEGIN. False with ERROR
 /// set when the field is refused.
@@ -25,7 +42,11 @@ inline bool convert_field(const ReadPlan& plan, std::size_t j, const char* line_
   row.is_integer[s] = plan.relative[s] && parse_int64(b, e, row.integer[s]);
   if (row.is_integer[s]) return true;
   double v = 0.0;
-  if (!parse_double(b, e, v)) {
+  if (plan.decimal_comma && !parse_with_decimal_comma(b, e, v)) {
+    error = {RowProblem::kMalformedNumber, 0, column, j, 0, {b, static_cast<std::size_t>(e - b)}};
+    return false;
+  }
+  if (!plan.decimal_comma && !parse_double(b, e, v)) {
     error = {RowProblem::kMalformedNumber, 0, column, j, 0, {b, static_cast<std::size_t>(e - b)}};
     return false;
   }

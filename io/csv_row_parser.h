@@ -29,6 +29,7 @@ struct ReadPlan {
   Delimiter delimiter = Delimiter::kWhitespace;
   char separator = ' ';
   bool drop_non_finite = false;
+  bool decimal_comma = false;           // a ',' in a field is the decimal point
   std::vector<int> slot_of;             // per file column: output slot, or -1 when not read
   std::vector<unsigned char> relative;  // per slot; not vector<bool>: read per field
   std::size_t slot_count() const { return relative.size(); }

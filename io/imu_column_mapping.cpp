@@ -16,6 +16,7 @@
 #include "common/errors.h"
 #include "common/sensor_kind.h"
 #include "io/csv_reader.h"
+#include "io/imu_header_mapping.h"
 #include "pipeline/sampling_checks.h"
 
 namespace imunoise::io {
@@ -76,26 +77,6 @@ Series read_series(const std::string& path, const SeriesReadOptions& options) {
 
 namespace {
 
-/// Units the project's own column names carry (what `imunoise simulate` writes).
-constexpr std::array<std::pair<std::string_view, TimeUnit>, 4> kTimeNames{{
-    {"time_s", TimeUnit::kSecond},
-    {"time_ms", TimeUnit::kMillisecond},
-    {"time_us", TimeUnit::kMicrosecond},
-    {"time_ns", TimeUnit::kNanosecond},
-}};
-constexpr std::array<std::pair<std::string_view, GyroUnit>, 5> kGyroSuffixes{{
-    {"rad_per_s", GyroUnit::kRadPerS},
-    {"deg_per_s", GyroUnit::kDegPerS},
-    {"deg_per_h", GyroUnit::kDegPerHour},
-    {"rad", GyroUnit::kRadIncrement},
-    {"deg", GyroUnit::kDegIncrement},
-}};
-constexpr std::array<std::pair<std::string_view, AccelUnit>, 4> kAccelSuffixes{{
-    {"m_per_s2", AccelUnit::kMPerS2},
-    {"g", AccelUnit::kG},
-    {"mg", AccelUnit::kMilliG},
-    {"m_per_s", AccelUnit::kMPerSIncrement},
-}};
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 
 /// Stamps of UNIT per second, exactly (1 / si_factor is not exact for ns).
@@ -113,62 +94,61 @@ double ticks_per_second(TimeUnit unit) {
   return 1.0;
 }
 
-/// A sensor group as mapped: column indices (x, y, z order) and the unit.
+/// A sensor group as mapped: column indices (x, y, z order), their axes and the unit.
 template <typename Unit>
 struct GroupMapping {
   std::vector<std::size_t> columns;
+  std::vector<std::size_t> axes;  ///< 0 = x, 1 = y, 2 = z
   Unit unit{};
 };
 
-std::optional<std::size_t> header_index(const TableLayout& layout, std::string_view name) {
-  for (std::size_t i = 0; i < layout.column_names.size(); ++i) {
-    if (layout.column_names[i] == name) return i;
-  }
-  return std::nullopt;
+[[noreturn]] void fail_at(const TableLayout& layout, std::int64_t line, const std::string& what) {
+  throw InputError(located_message(layout.path, line, 0, what));
 }
 
-/// Finds "<prefix>_x_<suffix>", "_y_", "_z_" for the first suffix present on all three axes.
-template <typename Unit, std::size_t N>
-std::optional<GroupMapping<Unit>> find_named_group(
-    const TableLayout& layout, std::string_view prefix,
-    const std::array<std::pair<std::string_view, Unit>, N>& suffixes) {
-  for (const auto& [suffix, unit] : suffixes) {
-    GroupMapping<Unit> group{{}, unit};
-    for (std::string_view axis : kAxes) {
-      const std::string name =
-          std::string(prefix) + "_" + std::string(axis) + "_" + std::string(suffix);
-      if (const auto index = header_index(layout, name)) group.columns.push_back(*index);
-    }
-    if (group.columns.size() == kAxes.size()) return group;
-  }
-  return std::nullopt;
-}
-
-template <typename Unit, std::size_t N>
+/// The gyro or accel columns: the flags' (1 to 3, x, y, z in order; unit default DEFAULT_UNIT),
+/// else the header's (csv_detail::map_imu_header). A named group whose unit neither the header
+/// nor the flag gives is an error asking for the flag, unless REQUIRED is false (the flags map
+/// other columns: then it is left out, as before names were recognised).
+template <typename Unit>
 std::optional<GroupMapping<Unit>> map_group(
-    const TableReader& reader, const std::string& path, std::string_view group,
-    const std::vector<std::string>& selectors, const std::optional<Unit>& unit, Unit default_unit,
-    const std::array<std::pair<std::string_view, Unit>, N>& suffixes) {
+    const TableReader& reader, std::string_view group, const std::vector<std::string>& selectors,
+    const std::optional<Unit>& unit, Unit default_unit,
+    const std::optional<csv_detail::HeaderGroup<Unit>>& named, const std::string& problem,
+    bool required, std::string_view units) {
+  const TableLayout& layout = reader.layout();
   if (!selectors.empty()) {
     if (selectors.size() > 3) {
-      throw InputError(located_message(path, 0, 0,
-                                       std::string(group) +
-                                           " columns: give 1 to 3 (x, y, z), got " +
-                                           std::to_string(selectors.size())));
+      fail_at(layout, 0,
+              std::string(group) + " columns: give 1 to 3 (x, y, z), got " +
+                  std::to_string(selectors.size()));
     }
-    GroupMapping<Unit> mapping{{}, unit.value_or(default_unit)};
-    for (const std::string& s : selectors) mapping.columns.push_back(reader.resolve_column(s));
+    GroupMapping<Unit> mapping{{}, {}, unit.value_or(default_unit)};
+    for (const std::string& s : selectors) {
+      mapping.axes.push_back(mapping.columns.size());
+      mapping.columns.push_back(reader.resolve_column(s));
+    }
     return mapping;
   }
-  auto named = find_named_group(reader.layout(), group, suffixes);
-  if (named && unit && *unit != named->unit) {
-    throw InputError(located_message(
-        path, reader.layout().header_line, 0,
-        "column '" + reader.layout().column_names[named->columns[0]] + "' is in " +
-            std::string(to_string(named->unit)) + " but " + std::string(group) + " unit " +
-            std::string(to_string(*unit)) + " was given; map the columns explicitly"));
+  if (!problem.empty()) {
+    if (!required) return std::nullopt;
+    throw InputError(problem);
   }
-  return named;
+  if (!named) return std::nullopt;
+  if (named->unit && unit && *unit != *named->unit) {
+    fail_at(layout, layout.header_line,
+            "column '" + layout.column_names[named->columns[0]] + "' is in " +
+                std::string(to_string(*named->unit)) + " but " + std::string(group) + " unit " +
+                std::string(to_string(*unit)) + " was given; map the columns explicitly");
+  }
+  if (!named->unit && !unit) {
+    if (!required) return std::nullopt;
+    fail_at(layout, layout.header_line,
+            layout.column_label(named->columns[0]) + " is a " + std::string(group) +
+                " axis but the header states no unit: give --" + std::string(group) + "-unit " +
+                std::string(units) + " (or " + std::string(group) + ".unit in the config)");
+  }
+  return GroupMapping<Unit>{named->columns, named->axes, named->unit ? *named->unit : *unit};
 }
 
 }  // namespace
@@ -186,19 +166,36 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
         located_message(path, 0, 0, "the sample rate must be a positive number of Hz"));
   }
 
-  // Time: a fixed rate, an explicit column, or a recognised name.
+  const csv_detail::HeaderMapping named = csv_detail::map_imu_header(layout);
+
+  // Time: a fixed rate, an explicit column, or the header's (one column or a sec + ns pair).
   std::optional<std::size_t> time_column;
+  std::optional<std::size_t> nanoseconds_column;
   TimeUnit time_unit = config.time_unit.value_or(TimeUnit::kSecond);
   if (!config.rate_hz) {
     if (!config.time_column.empty()) {
       time_column = reader.resolve_column(config.time_column);
-    } else {
-      for (const auto& [name, unit] : kTimeNames) {
-        if (const auto index = header_index(layout, name)) {
-          time_column = index;
-          break;
-        }
+      // The header's unit for that column, when the flag gives none (time_ns, "#timestamp [ns]").
+      if (!config.time_unit && named.time && named.time->column == *time_column &&
+          !named.time->nanoseconds_column && named.time->unit) {
+        time_unit = *named.time->unit;
       }
+    } else if (named.time) {
+      time_column = named.time->column;
+      nanoseconds_column = named.time->nanoseconds_column;
+      if (nanoseconds_column) {
+        time_unit = TimeUnit::kNanosecond;  // seconds × 1e9 + nanoseconds
+      } else if (!config.time_unit) {
+        if (!named.time->unit) {
+          fail_at(layout, layout.header_line,
+                  layout.column_label(*time_column) +
+                      " is the time stamp but the header states no unit: give --time-unit "
+                      "s|ms|us|ns (or time.unit in the config)");
+        }
+        time_unit = *named.time->unit;
+      }
+    } else if (!named.time_problem.empty()) {
+      throw InputError(named.time_problem);
     }
     if (!time_column) {
       throw InputError(located_message(
@@ -207,17 +204,16 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
           "time.column / rate_hz in the config); available columns: " +
               layout.describe_columns()));
     }
-    if (!config.time_unit && *time_column < layout.column_names.size()) {
-      for (const auto& [name, unit] : kTimeNames) {
-        if (layout.column_names[*time_column] == name) time_unit = unit;
-      }
-    }
   }
 
-  const auto gyro = map_group(reader, path, "gyro", config.gyro_columns, config.gyro_unit,
-                              GyroUnit::kRadPerS, kGyroSuffixes);
-  const auto accel = map_group(reader, path, "accel", config.accel_columns, config.accel_unit,
-                               AccelUnit::kMPerS2, kAccelSuffixes);
+  // Named groups without a unit are an error only when nothing else is mapped by the flags.
+  const bool flags_map = !config.gyro_columns.empty() || !config.accel_columns.empty();
+  const auto gyro =
+      map_group<GyroUnit>(reader, "gyro", config.gyro_columns, config.gyro_unit, GyroUnit::kRadPerS,
+                          named.gyro, named.gyro_problem, !flags_map, "rad/s|deg/s|deg/h|rad|deg");
+  const auto accel = map_group<AccelUnit>(reader, "accel", config.accel_columns, config.accel_unit,
+                                          AccelUnit::kMPerS2, named.accel, named.accel_problem,
+                                          !flags_map, "m/s^2|g|mg|m/s");
   std::vector<std::size_t> extra;
   for (const ExtraColumn& e : config.extra_columns)
     extra.push_back(reader.resolve_column(e.column));
@@ -225,14 +221,15 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     throw InputError(located_message(
         path, layout.header_line, 0,
         "no gyro or accel columns: map them with --gyro-cols / --accel-cols (or gyro.columns / "
-        "accel.columns in the config), or name them gyro_x_rad_per_s ... accel_z_m_per_s2; "
-        "available columns: " +
+        "accel.columns in the config), or name them gyro_x_rad_per_s ... accel_z_m_per_s2 "
+        "(docs/csv-dialects.md lists the names recognised); available columns: " +
             layout.describe_columns()));
   }
 
   // One request per column; the time column first, relative so ns stamps stay exact.
   std::vector<ColumnRequest> requests;
   if (time_column) requests.push_back({*time_column, true});
+  if (nanoseconds_column) requests.push_back({*nanoseconds_column, true});
   const std::size_t first_channel_request = requests.size();
   if (gyro) {
     for (std::size_t c : gyro->columns) requests.push_back({c, false});
@@ -242,10 +239,13 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
   }
   for (std::size_t c : extra) requests.push_back({c, false});
   for (std::size_t r = first_channel_request; time_column && r < requests.size(); ++r) {
-    if (requests[r].index == *time_column) {
-      throw InputError(located_message(path, layout.header_line, 0,
-                                       layout.column_label(*time_column) +
-                                           " is mapped both as the time column and as a channel"));
+    for (std::size_t t = 0; t < first_channel_request; ++t) {
+      if (requests[r].index == requests[t].index) {
+        throw InputError(
+            located_message(path, layout.header_line, 0,
+                            layout.column_label(requests[t].index) +
+                                " is mapped both as the time column and as a channel"));
+      }
     }
   }
 
@@ -262,10 +262,17 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     pipeline::require_min_samples(path, n, 2, "a sample rate from time stamps");
     const double factor = si_factor(time_unit);
     rec.time_s = std::move(data.columns[0]);
+    double first_stamp = data.first_values[0];
+    if (nanoseconds_column) {
+      // Seconds and nanoseconds, each relative to the first row: exact integers up to 2^53 ns.
+      const std::vector<double>& ns = data.columns[1];
+      for (std::size_t i = 0; i < n; ++i) rec.time_s[i] = rec.time_s[i] * 1e9 + ns[i];
+      first_stamp = data.first_values[0] * 1e9 + data.first_values[1];
+    }
     // Integer ns (µs, ms, s) stamps: the median interval exactly, from the integers.
     const auto exact = pipeline::exact_tick_median(rec.time_s, ticks_per_second(time_unit));
     for (double& t : rec.time_s) t *= factor;
-    rec.start_time_s = data.first_values[0] * factor;
+    rec.start_time_s = first_stamp * factor;
     timing = pipeline::analyze_timing(rec.time_s, options, exact);
     if (!(timing.median_interval_s > 0.0)) {
       throw InputError(located_message(path, data.first_data_line, 0,
@@ -301,7 +308,7 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     const bool inc = is_increment(gyro->unit);
     const double factor = si_factor(gyro->unit) / (inc ? rec.sample_period_s : 1.0);
     for (std::size_t a = 0; a < gyro->columns.size(); ++a) {
-      add_channel("gyro_" + std::string(kAxes[a]), SensorKind::gyro,
+      add_channel("gyro_" + std::string(kAxes[gyro->axes[a]]), SensorKind::gyro,
                   std::string(to_string(gyro->unit)), factor, inc);
     }
   }
@@ -309,7 +316,7 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     const bool inc = is_increment(accel->unit);
     const double factor = si_factor(accel->unit) / (inc ? rec.sample_period_s : 1.0);
     for (std::size_t a = 0; a < accel->columns.size(); ++a) {
-      add_channel("accel_" + std::string(kAxes[a]), SensorKind::accel,
+      add_channel("accel_" + std::string(kAxes[accel->axes[a]]), SensorKind::accel,
                   std::string(to_string(accel->unit)), factor, inc);
     }
   }

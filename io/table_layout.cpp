@@ -83,6 +83,37 @@ Delimiter detect_delimiter(const std::vector<std::string_view>& lines) {
   return Delimiter::kWhitespace;
 }
 
+/// True when FIELD reads as a number; with DECIMAL_COMMA, a comma in it reads as the point.
+bool is_number_in(std::string_view field, bool decimal_comma) {
+  if (!decimal_comma || field.find(',') == std::string_view::npos) return is_number(field);
+  std::string copy(field);
+  std::replace(copy.begin(), copy.end(), ',', '.');
+  return is_number(copy);
+}
+
+/// A decimal comma: the separator is not a comma, some field of the data lines (all but the
+/// first, which may be the header) holds a comma, and every such field is a number with a point
+/// in its place.
+bool detect_decimal_comma(const std::vector<std::string_view>& lines, Delimiter delimiter) {
+  if (delimiter == Delimiter::kComma) return false;
+  bool some = false;
+  for (std::size_t l = 1; l < lines.size(); ++l) {
+    for (std::string_view f : split_fields(lines[l], delimiter)) {
+      if (f.find(',') == std::string_view::npos) continue;
+      if (!is_number_in(f, true)) return false;
+      some = true;
+    }
+  }
+  if (lines.size() == 1) {  // one line: it is data when its comma fields are numbers
+    for (std::string_view f : split_fields(lines[0], delimiter)) {
+      if (f.find(',') == std::string_view::npos) continue;
+      if (!is_number_in(f, true)) return false;
+      some = true;
+    }
+  }
+  return some;
+}
+
 std::string header_name(std::string_view field) {
   const char* b = field.data();
   const char* e = b + field.size();
@@ -112,10 +143,14 @@ SniffedTable sniff_layout(LineSource& source, const std::string& path, Delimiter
   // The first content lines, with their line numbers (views into the peeked buffer).
   std::vector<std::string_view> lines;
   std::vector<std::int64_t> numbers;
+  std::string_view comment;  // the last '#' line before the first content line
+  std::int64_t comment_line = 0;
   for (std::size_t want = kSniffBytes;; want *= 2) {
     head = source.peek(want);
     lines.clear();
     numbers.clear();
+    comment = {};
+    comment_line = 0;
     std::int64_t number = 0;
     std::size_t pos = 0;
     std::size_t bytes = 0;
@@ -134,6 +169,9 @@ SniffedTable sniff_layout(LineSource& source, const std::string& path, Delimiter
       if (is_content(line)) {
         lines.push_back(line);
         numbers.push_back(number);
+      } else if (lines.empty() && line.find('#') != std::string_view::npos) {
+        comment = line;
+        comment_line = number;
       }
     }
     table.mean_line_bytes =
@@ -146,11 +184,29 @@ SniffedTable sniff_layout(LineSource& source, const std::string& path, Delimiter
   }
 
   layout.delimiter = requested != Delimiter::kAuto ? requested : detect_delimiter(lines);
+  layout.decimal_comma = detect_decimal_comma(lines, layout.delimiter);
+  const auto number = [&layout](std::string_view f) {
+    return is_number_in(f, layout.decimal_comma);
+  };
   const std::vector<std::string_view> first = split_fields(lines[0], layout.delimiter);
   // A header row holds no number at all; a row mixing words and numbers is a data row with
   // a malformed token, which the read loop then reports precisely.
-  const bool header = std::none_of(first.begin(), first.end(), is_number);
+  const bool header = std::none_of(first.begin(), first.end(), number);
   layout.column_count = first.size();
+  if (!header && comment_line > 0) {
+    // A header written as a comment (EuRoC, TUM-VI: "#timestamp [ns],w_RS_S_x [rad s^-1],…").
+    std::string_view names = comment.substr(comment.find('#'));
+    while (!names.empty() && (names.front() == '#' || is_blank(names.front()))) {
+      names.remove_prefix(1);
+    }
+    const std::vector<std::string_view> fields = split_fields(names, layout.delimiter);
+    const bool all_names = std::none_of(fields.begin(), fields.end(),
+                                        [&](std::string_view f) { return f.empty() || number(f); });
+    if (fields.size() >= 2 && fields.size() == first.size() && all_names) {
+      layout.header_line = comment_line;
+      for (std::string_view f : fields) layout.column_names.push_back(header_name(f));
+    }
+  }
   if (header) {
     layout.header_line = numbers[0];
     for (std::string_view f : first) layout.column_names.push_back(header_name(f));

@@ -1,9 +1,11 @@
 /// @file
 /// @brief The layout of a numeric text table (TableLayout) and, internal to the CSV reader
 /// (io/csv_reader.h), finding it from the table's first lines. Skips '#' comment and
-/// blank lines, CRLF and a UTF-8 BOM; finds the delimiter (or takes the one requested); takes
-/// the first content line as a header when it holds no number, else addresses the columns by
-/// position. Refuses empty, UTF-16, binary and comment-only files.
+/// blank lines, CRLF and a UTF-8 BOM; finds the delimiter (or takes the one requested) and a
+/// decimal comma; takes the first content line as a header when it holds no number, else the
+/// last '#' comment line before it when that one, without its '#', splits into as many names
+/// (two or more, none a number) as the first row has fields (EuRoC's `#timestamp [ns],…`), else
+/// addresses the columns by position. Refuses empty, UTF-16, binary and comment-only files.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +24,9 @@ struct TableLayout {
   std::size_t column_count = 0;
   std::vector<std::string> column_names;  ///< header names; empty when there is no header
   std::int64_t header_line = 0;           ///< 1-based line of the header; 0 = none
+  /// Numbers are written with a decimal comma ("1,5"): found when the separator is not a comma
+  /// and the fields holding a comma read as numbers with a point in its place.
+  bool decimal_comma = false;
 
   bool has_header() const { return !column_names.empty(); }
   /// "'gyro_x' (column 2)" with a header, "column 2" without (index is 0-based).

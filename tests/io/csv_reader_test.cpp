@@ -67,11 +67,22 @@ TEST(TableReader, ForcedDelimiterWins) {
 }
 
 TEST(TableReader, SemicolonPreferredOverDecimalCommas) {
-  // European exports: ';' separates, ',' is the decimal mark (which we then reject clearly).
-  const auto path = fixture("eu.csv", "a;b\n1,5;2,5\n");
+  // European exports: ';' separates, ',' is the decimal mark.
+  const auto path = fixture("eu.csv", "a;b\n1,5;2,5\n-0,25;3\n");
   EXPECT_EQ(TableReader(path).layout().delimiter, Delimiter::kSemicolon);
-  const std::string what = error_of([&] { series(path, "a"); });
-  EXPECT_THAT(what, HasSubstr("eu.csv:2:1: malformed number '1,5' in 'a' (column 1)"));
+  EXPECT_TRUE(TableReader(path).layout().decimal_comma);
+  EXPECT_THAT(series(path, "a").values, ElementsAre(1.5, -0.25));
+  EXPECT_THAT(series(path, "b").values, ElementsAre(2.5, 3.0));
+  // A field with two commas is no number: refused, located. Among the first (sniffed) lines
+  // it means there is no decimal comma, and the first comma field is the error.
+  const auto early = fixture("eu2.csv", "a;b\n1,5;2,5\n1,2,3;4\n");
+  EXPECT_THAT(error_of([&] { series(early, "a"); }),
+              HasSubstr("eu2.csv:2:1: malformed number '1,5' in 'a' (column 1)"));
+  std::string text = "a;b\n";
+  for (int i = 0; i < 100; ++i) text += "1,5;2,5\n";
+  const auto late = fixture("eu3.csv", text + "1,2,3;4\n");
+  EXPECT_THAT(error_of([&] { series(late, "a"); }),
+              HasSubstr("eu3.csv:102:1: malformed number '1,2,3' in 'a' (column 1)"));
 }
 
 TEST(ReadSeries, OneNumberPerLineWithCommentsAndBlanks) {
