@@ -144,9 +144,10 @@ std::optional<GroupMapping<Unit>> map_group(
   if (!named->unit && !unit) {
     if (!required) return std::nullopt;
     fail_at(layout, layout.header_line,
-            layout.column_label(named->columns[0]) + " is a " + std::string(group) +
-                " axis but the header states no unit: give --" + std::string(group) + "-unit " +
-                std::string(units) + " (or " + std::string(group) + ".unit in the config)");
+            layout.column_label(named->columns[0]) + (group == "accel" ? " is an " : " is a ") +
+                std::string(group) + " axis but the header states no unit: give --" +
+                std::string(group) + "-unit " + std::string(units) + " (or " + std::string(group) +
+                ".unit in the config)");
   }
   return GroupMapping<Unit>{named->columns, named->axes, named->unit ? *named->unit : *unit};
 }
@@ -262,17 +263,16 @@ pipeline::Recording read_recording(const std::string& path, const InputConfig& c
     pipeline::require_min_samples(path, n, 2, "a sample rate from time stamps");
     const double factor = si_factor(time_unit);
     rec.time_s = std::move(data.columns[0]);
-    double first_stamp = data.first_values[0];
+    rec.start_time_s = data.first_values[0] * factor;
     if (nanoseconds_column) {
       // Seconds and nanoseconds, each relative to the first row: exact integers up to 2^53 ns.
       const std::vector<double>& ns = data.columns[1];
       for (std::size_t i = 0; i < n; ++i) rec.time_s[i] = rec.time_s[i] * 1e9 + ns[i];
-      first_stamp = data.first_values[0] * 1e9 + data.first_values[1];
+      rec.start_time_s = data.first_values[0] + data.first_values[1] * 1e-9;
     }
     // Integer ns (µs, ms, s) stamps: the median interval exactly, from the integers.
     const auto exact = pipeline::exact_tick_median(rec.time_s, ticks_per_second(time_unit));
     for (double& t : rec.time_s) t *= factor;
-    rec.start_time_s = first_stamp * factor;
     timing = pipeline::analyze_timing(rec.time_s, options, exact);
     if (!(timing.median_interval_s > 0.0)) {
       throw InputError(located_message(path, data.first_data_line, 0,
