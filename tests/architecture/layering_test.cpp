@@ -33,6 +33,8 @@ const std::map<std::string, std::set<std::string>>& allowed_includes() {
       {"io", {"common", "analysis", "models", "ins", "pipeline", "io"}},
       {"report", {"common", "analysis", "models", "ins", "pipeline", "io", "report"}},
       {"tools", {"common", "analysis", "models", "ins", "pipeline", "io", "report", "tools"}},
+      // The Python module: bindings over the layers below report, like a second front end.
+      {"python", {"common", "analysis", "models", "ins", "pipeline", "io", "python"}},
   };
   return allowed;
 }
