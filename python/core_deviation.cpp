@@ -31,14 +31,19 @@ analysis::TauGridSpec tau_grid_of(const py::object& taus) {
   if (py::isinstance<py::str>(taus)) return analysis::parse_tau_grid(taus.cast<std::string>());
   std::string text;
   for (const py::handle item : taus) {
-    if (!py::isinstance<py::int_>(item) &&
-        !(py::isinstance<py::float_>(item) &&
-          std::floor(item.cast<double>()) == item.cast<double>())) {
+    long long factor = 0;
+    if (PyIndex_Check(item.ptr())) {  // int, numpy integers
+      factor = py::reinterpret_steal<py::int_>(PyNumber_Index(item.ptr())).cast<long long>();
+    } else if (py::isinstance<py::float_>(item) &&
+               std::floor(item.cast<double>()) == item.cast<double>() &&
+               std::abs(item.cast<double>()) < 9e15) {
+      factor = static_cast<long long>(item.cast<double>());
+    } else {
       throw InputError("taus: expected a grid name or whole averaging factors m, got " +
                        py::repr(item).cast<std::string>());
     }
     if (!text.empty()) text += ',';
-    text += std::to_string(item.cast<long long>());
+    text += std::to_string(factor);
   }
   return analysis::parse_tau_grid(text);
 }
@@ -177,8 +182,13 @@ py::tuple variance_at(const DoubleArray& phase, const std::string& kind,
   std::vector<analysis::VarianceEstimate> out(count);
   {
     py::gil_scoped_release unlocked;
-    for (std::size_t i = 0; i < count; ++i) {
-      out[i] = analysis::allan_family_variance(*type, x, factors[i], tau0_s);
+    if (*type == analysis::DeviationType::oadev || *type == analysis::DeviationType::ohdev) {
+      // The cache-sharing passes of the analysis, bit for bit allan_family_variance.
+      out = analysis::overlapping_variances(*type, x, factors, tau0_s);
+    } else {
+      for (std::size_t i = 0; i < count; ++i) {
+        out[i] = analysis::allan_family_variance(*type, x, factors[i], tau0_s);
+      }
     }
   }
   for (std::size_t i = 0; i < count; ++i) {
