@@ -61,3 +61,28 @@ def test_fit_of_arrays_recovers_white_noise():
     assert e.identified
     assert e.ci_low < n_true < e.ci_high
     assert abs(e.value / n_true - 1) < 0.01
+
+
+def test_the_gil_is_released_while_the_core_computes():
+    # A thread runs a long deviation; once it has entered the call, the main thread keeps
+    # running Python. With the GIL held for the call, the main thread could not run at all
+    # until the call returned (the count would stay at the handful of loops before it).
+    import threading
+
+    x = np.random.default_rng(4).standard_normal(4_000_000)
+    entered = threading.Event()
+    done = threading.Event()
+
+    def work():
+        entered.set()
+        imunoise.deviation(x, "mdev", rate=100.0, taus="octave", threads=1)
+        done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    entered.wait()
+    count = 0
+    while not done.is_set():
+        count += 1
+    t.join()
+    assert count > 10_000, count
