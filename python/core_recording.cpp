@@ -47,13 +47,57 @@ std::string default_lcm_channel(const std::string& path) {
                                        io::describe_lcm_log_channels(channels)));
 }
 
+/// The column mapping of a table: the input config file CONFIG (io/input_config.h), then the
+/// arguments given (the CLI's --time-col, --time-unit, --gyro-cols, … under Python names).
+struct TableOptions {
+  std::optional<std::string> config, time_col, time_unit, gyro_unit, accel_unit;
+  std::vector<std::string> gyro_cols, accel_cols;
+  bool given() const {
+    return config || time_col || time_unit || gyro_unit || accel_unit || !gyro_cols.empty() ||
+           !accel_cols.empty();
+  }
+};
+
+io::InputConfig table_config(const TableOptions& t) {
+  io::InputConfig c = t.config ? io::load_input_config(*t.config) : io::InputConfig{};
+  if (t.time_col) c.time_column = *t.time_col;
+  if (t.time_unit) {
+    c.time_unit = io::parse_time_unit(*t.time_unit);
+    if (!c.time_unit)
+      throw InputError("time_unit: expected s, ms, us or ns, got '" + *t.time_unit + "'");
+  }
+  if (t.gyro_unit) {
+    c.gyro_unit = io::parse_gyro_unit(*t.gyro_unit);
+    if (!c.gyro_unit) {
+      throw InputError("gyro_unit: expected rad/s, deg/s, deg/h, rad or deg, got '" + *t.gyro_unit +
+                       "'");
+    }
+  }
+  if (t.accel_unit) {
+    c.accel_unit = io::parse_accel_unit(*t.accel_unit);
+    if (!c.accel_unit) {
+      throw InputError("accel_unit: expected m/s^2, g, mg or m/s, got '" + *t.accel_unit + "'");
+    }
+  }
+  if (!t.gyro_cols.empty()) c.gyro_columns = t.gyro_cols;
+  if (!t.accel_cols.empty()) c.accel_columns = t.accel_cols;
+  return c;
+}
+
 RecordingPtr read_recording(const std::string& path, const std::optional<std::string>& topic,
                             std::optional<int> instance,
                             const std::optional<std::string>& time_source,
                             const std::optional<std::string>& lcm_channel,
-                            std::optional<double> rate_hz, bool drop_non_finite, unsigned threads) {
+                            std::optional<double> rate_hz, bool drop_non_finite, unsigned threads,
+                            const TableOptions& table) {
   py::gil_scoped_release unlocked;
   const io::RecordingFormat format = io::detect_recording_format(path);
+  if (table.given() && format != io::RecordingFormat::kTable) {
+    throw InputError(path +
+                     ": config and the column/unit arguments apply to CSV/TXT tables; "
+                     "this file is read as " +
+                     std::string(io::recording_format_name(format)));
+  }
   const bool log_options = topic || instance || time_source;
   if (io::is_robotics_log(format)) {
     if (lcm_channel || rate_hz) {
@@ -77,8 +121,8 @@ RecordingPtr read_recording(const std::string& path, const std::optional<std::st
                      "bags, MCAP, rosbag2, ULog); this file is read as " +
                      std::string(io::recording_format_name(format)));
   }
-  io::InputConfig config;
-  config.rate_hz = rate_hz;
+  io::InputConfig config = table_config(table);
+  if (rate_hz) config.rate_hz = rate_hz;
   if (drop_non_finite) config.drop_non_finite = true;
   io::LcmImuSource lcm;
   if (format == io::RecordingFormat::kLcmLog) {
@@ -233,11 +277,28 @@ void add_recording_functions(py::module_& m) {
       .def_property_readonly("sampling_report_text", [](const pipeline::Recording& r) {
         return io::format_sampling_report(r.report, r.source_path);
       });
-  m.def("read_recording", &read_recording, py::arg("path"), py::kw_only(),
-        py::arg("topic") = py::none(), py::arg("instance") = py::none(),
-        py::arg("time_source") = py::none(), py::arg("lcm_channel") = py::none(),
-        py::arg("rate_hz") = py::none(), py::arg("drop_non_finite") = false,
-        py::arg("threads") = 0u);
+  m.def(
+      "read_recording",
+      [](const std::string& path, const std::optional<std::string>& topic,
+         std::optional<int> instance, const std::optional<std::string>& time_source,
+         const std::optional<std::string>& lcm_channel, std::optional<double> rate_hz,
+         bool drop_non_finite, unsigned threads, std::optional<std::string> config,
+         std::optional<std::string> time_col, std::optional<std::string> time_unit,
+         std::vector<std::string> gyro_cols, std::optional<std::string> gyro_unit,
+         std::vector<std::string> accel_cols, std::optional<std::string> accel_unit) {
+        TableOptions table{std::move(config),    std::move(time_col),   std::move(time_unit),
+                           std::move(gyro_unit), std::move(accel_unit), std::move(gyro_cols),
+                           std::move(accel_cols)};
+        return read_recording(path, topic, instance, time_source, lcm_channel, rate_hz,
+                              drop_non_finite, threads, table);
+      },
+      py::arg("path"), py::kw_only(), py::arg("topic") = py::none(),
+      py::arg("instance") = py::none(), py::arg("time_source") = py::none(),
+      py::arg("lcm_channel") = py::none(), py::arg("rate_hz") = py::none(),
+      py::arg("drop_non_finite") = false, py::arg("threads") = 0u, py::arg("config") = py::none(),
+      py::arg("time_col") = py::none(), py::arg("time_unit") = py::none(),
+      py::arg("gyro_cols") = std::vector<std::string>{}, py::arg("gyro_unit") = py::none(),
+      py::arg("accel_cols") = std::vector<std::string>{}, py::arg("accel_unit") = py::none());
   m.def("recording_from_arrays", &recording_from_arrays, py::arg("rate_hz"), py::arg("channels"),
         py::arg("source") = "arrays");
   m.def("simulate", &simulate, py::arg("model_path"), py::arg("duration_s"),

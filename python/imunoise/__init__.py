@@ -80,15 +80,26 @@ def psd(x, rate: float, bins_per_decade: int = 10, level_segment_length: int = 4
 def read_recording(path: Union[str, os.PathLike], *, topic: Optional[str] = None,
                    instance: Optional[int] = None, time_source: Optional[str] = None,
                    lcm_channel: Optional[str] = None, rate_hz: Optional[float] = None,
-                   drop_non_finite: bool = False, threads: int = 0) -> Recording:
+                   drop_non_finite: bool = False, threads: int = 0,
+                   config: Optional[Union[str, os.PathLike]] = None,
+                   time_col: Optional[str] = None, time_unit: Optional[str] = None,
+                   gyro_cols: Sequence[str] = (), gyro_unit: Optional[str] = None,
+                   accel_cols: Sequence[str] = (), accel_unit: Optional[str] = None) -> Recording:
     """The recording at PATH by the reader its content calls for (CSV/TXT, .imnb, LCM log, ROS 1
     bag, MCAP, rosbag2 .db3, PX4 ULog), as every imunoise command reads it. TOPIC / INSTANCE /
-    TIME_SOURCE ('header' or 'log') select in robotics logs, LCM_CHANNEL in LCM logs, RATE_HZ
-    replaces the time column of a table."""
+    TIME_SOURCE ('header' or 'log') select in robotics logs, LCM_CHANNEL in LCM logs. For a
+    table: RATE_HZ replaces the time column; CONFIG (an input config YAML, as --config) and
+    TIME_COL, TIME_UNIT (s, ms, us, ns), GYRO_COLS, GYRO_UNIT (rad/s, deg/s, deg/h, rad, deg),
+    ACCEL_COLS, ACCEL_UNIT (m/s^2, g, mg, m/s) map the columns as the CLI's flags do; without
+    them the columns are found from the header (docs/csv-dialects.md)."""
     return _core.read_recording(os.fspath(path), topic=topic, instance=instance,
                                 time_source=time_source, lcm_channel=lcm_channel,
                                 rate_hz=rate_hz, drop_non_finite=drop_non_finite,
-                                threads=threads)
+                                threads=threads,
+                                config=None if config is None else os.fspath(config),
+                                time_col=time_col, time_unit=time_unit,
+                                gyro_cols=list(gyro_cols), gyro_unit=gyro_unit,
+                                accel_cols=list(accel_cols), accel_unit=accel_unit)
 
 
 def recording_from_arrays(rate_hz: float, source: str = "arrays", **channels) -> Recording:

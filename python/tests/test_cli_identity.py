@@ -77,3 +77,28 @@ def test_simulate_gives_the_samples_of_the_simulate_command(imunoise_cli, tmp_pa
     assert drawn.sample_count == from_file.sample_count == 12000
     for name in from_file.channel_names:
         np.testing.assert_array_equal(drawn.channel(name), from_file.channel(name))
+
+
+def test_column_and_unit_arguments_map_a_table_as_the_cli_flags(imunoise_cli, tmp_path):
+    # A headerless table in deg/s and g with the time in ms: the mapping arguments of
+    # read_recording give the recording the CLI's flags give (its sampling report, and the
+    # values in SI: deg/s × π/180, g × 9.80665).
+    rng = np.random.default_rng(7)
+    rows = 2000
+    t_ms = np.arange(rows) * 5.0
+    gyro = rng.standard_normal((rows, 3))
+    accel = rng.standard_normal((rows, 3)) * 0.01 + [0, 0, 1]
+    path = tmp_path / "plain.csv"
+    with open(path, "w") as f:
+        for i in range(rows):
+            f.write(",".join(repr(v) for v in [t_ms[i], *gyro[i], *accel[i]]) + "\n")
+    flags = ["--time-col", "1", "--time-unit", "ms", "--gyro-cols", "2,3,4", "--gyro-unit",
+             "deg/s", "--accel-cols", "5,6,7", "--accel-unit", "g"]
+    cli = json.loads(imunoise_cli("check", path, *flags, "--json").stdout)
+    rec = imunoise.read_recording(path, time_col="1", time_unit="ms", gyro_cols=["2", "3", "4"],
+                                  gyro_unit="deg/s", accel_cols=["5", "6", "7"], accel_unit="g")
+    assert json.loads(rec.sampling_report_json) == cli
+    np.testing.assert_allclose(rec.channel("gyro_y"), gyro[:, 1] * np.pi / 180, rtol=1e-15)
+    np.testing.assert_allclose(rec.channel("accel_z"), accel[:, 2] * 9.80665, rtol=1e-15)
+    with pytest.raises(imunoise.InputError, match="gyro_unit: expected"):
+        imunoise.read_recording(path, gyro_unit="furlong/s")
