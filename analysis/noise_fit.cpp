@@ -698,8 +698,46 @@ PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> p
   return out;
 }
 
+namespace {
+
+/// f = uᵀCu/uᵀu (at least 1) for the weighted basis PHI of a term, u made orthogonal to the
+/// columns the fit without it uses (coefficient > 0), with the weights √(ν/2)/m of its
+/// solution: the factor by which the correlation C of the estimates inflates the variance of
+/// the term's estimate over the independent-points value the deviance assumes.
+double direction_inflation(const Data& data, const std::vector<Column>& columns, bool hadamard,
+                           int weight_iterations, const Eigen::VectorXd& phi,
+                           std::span<const double> correlation) {
+  const auto n = static_cast<Eigen::Index>(data.size());
+  const Solution s = solve(data, columns, hadamard, weight_iterations, Eigen::VectorXd::Zero(n));
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    scale(k) = std::sqrt(0.5 * data.nu[i]) / floored(s.model(k), data.y[i]);
+  }
+  std::vector<Eigen::Index> active;
+  for (Eigen::Index j = 0; j < s.c.size(); ++j)
+    if (s.c(j) > 0.0) active.push_back(j);
+  Eigen::MatrixXd a(n, static_cast<Eigen::Index>(active.size()));
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index k = 0; k < n; ++k)
+      a(k, j) =
+          scale(k) * basis(columns[static_cast<std::size_t>(active[static_cast<std::size_t>(j)])],
+                           data.tau[static_cast<std::size_t>(k)], hadamard);
+  Eigen::VectorXd u = scale.cwiseProduct(phi);
+  if (a.cols() > 0) u -= a * a.colPivHouseholderQr().solve(u);
+  const double uu = u.squaredNorm();
+  if (!(uu > 0.0)) return 1.0;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> c(
+      correlation.data(), n, n);
+  const double f = u.dot(c * u) / uu;
+  return std::isfinite(f) ? std::max(f, 1.0) : 1.0;
+}
+
+}  // namespace
+
 double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
-                           double confidence, int weight_iterations) {
+                           double confidence, int weight_iterations,
+                           std::span<const double> used_correlation) {
   if (fit.used.empty()) return std::numeric_limits<double>::infinity();
   const Data data = used_data(points, fit.used, "profile_upper_bound");
   std::vector<Column> columns = structure_columns(fit);
@@ -716,8 +754,14 @@ double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fi
     return solve(data, columns, fit.hadamard, weight_iterations, c * c * phi).deviance;
   };
   const double d0 = deviance_at(0.0);
-  const double target = chi_square_quantile(confidence, 1.0) * static_cast<double>(data.size()) /
-                        effective_point_count(data);
+  double inflation = static_cast<double>(data.size()) / effective_point_count(data);
+  if (!used_correlation.empty()) {
+    IMUNOISE_EXPECT(used_correlation.size() == data.size() * data.size(),
+                    "profile_upper_bound: the correlation must be n_used x n_used");
+    inflation =
+        direction_inflation(data, columns, fit.hadamard, weight_iterations, phi, used_correlation);
+  }
+  const double target = chi_square_quantile(confidence, 1.0) * inflation;
   double c_hi = 0.0;
   for (Eigen::Index k = 0; k < n; ++k) {
     if (phi(k) > 0.0) {

@@ -183,13 +183,19 @@ PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> p
 
 /// Profile upper bound of a term FIT did not identify: the coefficient c at which forcing the
 /// term to c (c²·basis added as a fixed offset, FIT's other terms re-fitted by the same
-/// re-weighted NNLS, GM T_c held) raises the gamma deviance by χ²₁(CONFIDENCE)·n_used/n_eff —
-/// the correlation-corrected scale of the model selection. Infinity if no c within reach of
-/// the data (the term alone 100× the data at its most favourable point) does.
+/// re-weighted NNLS, GM T_c held) raises the gamma deviance by χ²₁(CONFIDENCE)·f. Without
+/// USED_CORRELATION, f = n_used/n_eff, the correlation-corrected scale of the model selection.
+/// With it — the correlation matrix of the variance estimates at FIT.used (row-major, n_used²;
+/// e.g. analysis/variance_covariance.h under FIT's model) — f is the variance inflation of the
+/// term's own direction: f = uᵀCu/uᵀu (at least 1), u the term's weighted basis made orthogonal
+/// to FIT's fitted columns (theory.md §4.3): a term carried by a few strongly correlated long-τ
+/// points (K, R) gets the wider bound its estimate's real spread calls for. Infinity if no c
+/// within reach of the data (the term alone 100× the data at its most favourable point) does.
 /// @throws AnalysisError when a point of FIT.used is unusable, ContractViolation when FIT.used
-///   does not index POINTS.
+///   does not index POINTS or USED_CORRELATION is neither empty nor n_used².
 double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
                            double confidence,
-                           int weight_iterations = FitOptions{}.weight_iterations);
+                           int weight_iterations = FitOptions{}.weight_iterations,
+                           std::span<const double> used_correlation = {});
 
 }  // namespace imunoise::analysis

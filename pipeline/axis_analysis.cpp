@@ -12,6 +12,7 @@
 #include "analysis/edf.h"
 #include "analysis/multirate_psd.h"
 #include "analysis/noise_terms.h"
+#include "analysis/variance_covariance.h"
 #include "common/errors.h"
 #include "models/bias_instability_gm.h"
 #include "pipeline/bootstrap.h"
@@ -315,6 +316,32 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     intervals = analysis::least_squares_intervals(points, out.fit, options.confidence);
     interval_method = "weighted least squares covariance (ignores inter-tau correlation)";
   }
+  // The correlation of the OAVAR estimates at the fitted points under the fitted model
+  // (analysis/variance_covariance.h), for the upper bounds of the terms not identified.
+  std::vector<double> used_correlation;
+  {
+    std::vector<std::int64_t> used_m;
+    for (std::size_t k : out.fit.used) used_m.push_back(m_oadev[k]);
+    if (!used_m.empty()) {
+      const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
+          out.fit.coefficients, tau0_s, total_samples, used_m, out.fit.hadamard);
+      const std::size_t n = used_m.size();
+      used_correlation.assign(n * n, 0.0);
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j) {
+          const double vi =
+              vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+          const double vj =
+              vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
+          used_correlation[i * n + j] =
+              vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
+                  ? vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
+                        std::sqrt(vi * vj)
+                  : (i == j ? 1.0 : 0.0);
+        }
+      }
+    }
+  }
   for (NoiseTerm term : kNoiseTerms) {
     const auto t = static_cast<std::size_t>(term);
     models::Estimate& e = model.terms[t];
@@ -327,13 +354,14 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
       e.interval_method = interval_method;
     } else {
       e.ci_low = 0.0;
-      const double bound =
-          analysis::profile_upper_bound(points, out.fit, static_cast<NoiseTerm>(t),
-                                        options.confidence, fit_options.weight_iterations);
+      const double bound = analysis::profile_upper_bound(
+          points, out.fit, static_cast<NoiseTerm>(t), options.confidence,
+          fit_options.weight_iterations, used_correlation);
       e.ci_high = std::isfinite(bound) ? bound : 0.0;
       e.interval_method = std::isfinite(bound)
-                              ? "not identified; profile upper bound (deviance rise "
-                                "chi2_1 x n_used/n_eff, analysis::profile_upper_bound)"
+                              ? "not identified; profile upper bound (deviance rise chi2_1 x "
+                                "the variance inflation of the term's direction under the "
+                                "model's tau correlation, analysis::profile_upper_bound)"
                               : "not identified; no bound from the fitted range";
     }
   }

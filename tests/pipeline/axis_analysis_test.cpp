@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/noise_terms.h"
+#include "analysis/variance_covariance.h"
 #include "common/errors.h"
 #include "common/units.h"
 #include "models/noise_simulator.h"
@@ -165,6 +166,51 @@ TEST(Bootstrap, UpperBoundOfAnAbsentTermIsAboveZeroAndBelowWhatTheDataWouldShow)
   // interval, i.e. of the order of the AVAR there — so the bound is not vacuous.
   const auto& last = a.oadev.points.back();
   EXPECT_LT(bound * last.tau_s / std::sqrt(2.0), 3.0 * last.value);
+}
+
+TEST(Bootstrap, UpperBoundWidensWithTheCorrelationAlongTheTermsDirection) {
+  // The bound's deviance rise is χ²₁ times the variance inflation of the term's direction:
+  // 1 for independent points (identity correlation), more under the model's correlation of the
+  // OAVAR estimates (analysis/variance_covariance.h), which for the ramp — carried by the few,
+  // strongly correlated longest-τ points — is well above 1.
+  const NoiseCoefficients truth = white_rw_truth();
+  const std::vector<double> rate = simulate(truth, 50.0, 3600.0, 21);
+  AxisAnalysisOptions options;
+  options.bootstrap_replicates = 0;
+  const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
+  const std::vector<analysis::FitPoint> points = analysis::fit_points(a.oadev);
+  std::vector<std::int64_t> used_m;
+  for (std::size_t k : a.fit.used) used_m.push_back(a.oadev.points[k].m);
+  const std::size_t n = used_m.size();
+  const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
+      a.fit.coefficients, 0.02, static_cast<std::int64_t>(rate.size()), used_m);
+  std::vector<double> model(n * n), identity(n * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    identity[i * n + i] = 1.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      model[i * n + j] =
+          vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
+          std::sqrt(vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) *
+                    vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j)));
+    }
+  }
+  const int iterations = analysis::FitOptions{}.weight_iterations;
+  const double independent =
+      analysis::profile_upper_bound(points, a.fit, NoiseTerm::ramp, 0.95, iterations, identity);
+  const double correlated =
+      analysis::profile_upper_bound(points, a.fit, NoiseTerm::ramp, 0.95, iterations, model);
+  const double octaves = analysis::profile_upper_bound(points, a.fit, NoiseTerm::ramp, 0.95);
+  ASSERT_TRUE(std::isfinite(independent) && std::isfinite(correlated) && std::isfinite(octaves));
+  EXPECT_LT(independent, octaves);  // n_used/n_eff > 1 on the log:10 grid
+  EXPECT_GT(correlated, 1.1 * independent);
+  // The bound in the model (analyze_axis passes the model's correlation) is that one.
+  EXPECT_DOUBLE_EQ(a.model.terms[static_cast<std::size_t>(NoiseTerm::ramp)].ci_high, correlated);
+  test::expect_throw_containing<ContractViolation>(
+      [&] {
+        analysis::profile_upper_bound(points, a.fit, NoiseTerm::ramp, 0.95, iterations,
+                                      std::vector<double>(3, 1.0));
+      },
+      "n_used x n_used");
 }
 
 // The progress callback (common/progress_callback.h) only observes: the same record gives
