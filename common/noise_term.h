@@ -36,6 +36,24 @@ constexpr std::string_view term_name(NoiseTerm term) {
   return "unknown";
 }
 
+/// "Q", "N", "B", "K" or "R": the symbol of the term in theory.md and in every header, label
+/// and message that abbreviates it.
+constexpr const char* term_symbol(NoiseTerm term) {
+  switch (term) {
+    case NoiseTerm::quantization:
+      return "Q";
+    case NoiseTerm::white_noise:
+      return "N";
+    case NoiseTerm::bias_instability:
+      return "B";
+    case NoiseTerm::random_walk:
+      return "K";
+    case NoiseTerm::ramp:
+      return "R";
+  }
+  return "?";
+}
+
 /// One T per term in kNoiseTerms order, indexed by the term or by its position: a std::array
 /// (aggregate, value-initialised by `{}`) that also takes a NoiseTerm as index.
 template <class T>

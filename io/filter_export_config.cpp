@@ -15,23 +15,6 @@ using models::FilterParameters;
 using models::SensorAxisParameters;
 using models::SensorParameters;
 
-/// The symbol a header uses for a term ("K", …).
-const char* symbol(NoiseTerm t) {
-  switch (t) {
-    case NoiseTerm::quantization:
-      return "Q";
-    case NoiseTerm::white_noise:
-      return "N";
-    case NoiseTerm::bias_instability:
-      return "B";
-    case NoiseTerm::random_walk:
-      return "K";
-    case NoiseTerm::ramp:
-      return "R";
-  }
-  return "?";
-}
-
 /// Formats whose consumer refuses or breaks on a 0 it carries: Kalibr's ImuParameters and
 /// Kimera's ImuFrontend reject it, Basalt divides by it (bias weight 1/std), LIO-SAM and GTSAM
 /// build a zero-sigma noise model from it.
@@ -88,7 +71,7 @@ std::vector<std::string> unidentified_lines(const FilterParameters& p, ExportFor
         if (std::find(seen.begin(), seen.end(), std::pair{u.axis, u.term}) != seen.end()) continue;
         seen.emplace_back(u.axis, u.term);
         const std::string what =
-            u.axis + " " + std::string(term_name(u.term)) + " (" + symbol(u.term) + ")";
+            u.axis + " " + std::string(term_name(u.term)) + " (" + term_symbol(u.term) + ")";
         const std::string unit(models::term_si_unit(u.term, (*s)->kind));
         if (strict)
           throw InputError(name + ": " + what + " is not identified, and --strict refuses " +

@@ -19,9 +19,9 @@
 #include <utility>
 
 #include "common/errors.h"
-#include "pipeline/imu_samples.h"
 #include "io/lcm_fingerprint.h"
 #include "io/lcm_messages.h"
+#include "pipeline/imu_samples.h"
 
 namespace imunoise::io {
 namespace {
@@ -274,6 +274,20 @@ pipeline::Recording read_user_type_log(const std::string& path, const std::strin
 }
 
 }  // namespace
+
+std::string only_imu_sample_channel(const std::string& path, std::string_view hint) {
+  const std::vector<LcmLogChannel> channels = list_lcm_log_channels(path);
+  std::vector<std::string> found;
+  for (const LcmLogChannel& c : channels) {
+    if (c.type_name == "imunoise.imu_sample_t") found.push_back(c.name);
+  }
+  if (found.size() == 1) return found.front();
+  throw InputError(located_message(
+      path, 0, 0,
+      std::string(found.empty() ? "no imunoise.imu_sample_t channel"
+                                : "several imunoise.imu_sample_t channels") +
+          " in this LCM log; " + std::string(hint) + "; " + describe_lcm_log_channels(channels)));
+}
 
 std::string describe_lcm_log_channels(const std::vector<LcmLogChannel>& channels) {
   if (channels.empty()) return "the log holds no events";

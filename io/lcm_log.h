@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/lcm_user_imu_decoder.h"
@@ -45,6 +46,12 @@ std::vector<LcmLogChannel> list_lcm_log_channels(const std::string& path);
 /// "the log holds 'IMU' (imunoise.imu_sample_t, 100 events), 'X' (unknown type, fingerprint
 /// 0x…, 2 events)" — how error messages list a log's channels.
 std::string describe_lcm_log_channels(const std::vector<LcmLogChannel>& channels);
+
+/// The log's only imunoise.imu_sample_t channel, the default of every reader of PATH; else
+/// InputError "PATH: no (several) imunoise.imu_sample_t channel(s) in this LCM log; HINT; " and
+/// the channels (describe_lcm_log_channels). HINT names the caller's setting ("give --channel
+/// NAME").
+std::string only_imu_sample_channel(const std::string& path, std::string_view hint);
 
 /// Options of read_lcm_imu_log.
 struct LcmReadOptions {

@@ -30,23 +30,6 @@ namespace {
 
 using RecordingPtr = std::shared_ptr<pipeline::Recording>;
 
-/// The LCM channel of PATH when none is given: its only imunoise.imu_sample_t channel (as the
-/// CLI's default).
-std::string default_lcm_channel(const std::string& path) {
-  const std::vector<io::LcmLogChannel> channels = io::list_lcm_log_channels(path);
-  std::vector<std::string> found;
-  for (const io::LcmLogChannel& c : channels) {
-    if (c.type_name == "imunoise.imu_sample_t") found.push_back(c.name);
-  }
-  if (found.size() == 1) return found.front();
-  throw InputError(located_message(path, 0, 0,
-                                   std::string(found.empty() ? "no imunoise.imu_sample_t channel"
-                                                             : "several imunoise.imu_sample_t "
-                                                               "channels") +
-                                       " in this LCM log; give lcm_channel=NAME; " +
-                                       io::describe_lcm_log_channels(channels)));
-}
-
 /// The column mapping of a table: the input config file CONFIG (io/input_config.h), then the
 /// arguments given (the CLI's --time-col, --time-unit, --gyro-cols, … under Python names).
 struct TableOptions {
@@ -126,7 +109,8 @@ RecordingPtr read_recording(const std::string& path, const std::optional<std::st
   if (drop_non_finite) config.drop_non_finite = true;
   io::LcmImuSource lcm;
   if (format == io::RecordingFormat::kLcmLog) {
-    lcm.channel = lcm_channel ? *lcm_channel : default_lcm_channel(path);
+    lcm.channel =
+        lcm_channel ? *lcm_channel : io::only_imu_sample_channel(path, "give lcm_channel=NAME");
   } else if (lcm_channel) {
     throw InputError(path + ": lcm_channel applies to LCM logs; this file is read as " +
                      std::string(io::recording_format_name(format)));

@@ -100,22 +100,6 @@ std::vector<double> term_adev(const NoiseCoefficients& c, NoiseTerm term,
   return out;
 }
 
-const char* term_symbol(NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::quantization:
-      return "Q";
-    case NoiseTerm::white_noise:
-      return "N";
-    case NoiseTerm::bias_instability:
-      return "B";
-    case NoiseTerm::random_walk:
-      return "K";
-    case NoiseTerm::ramp:
-      return "R";
-  }
-  return "?";
-}
-
 }  // namespace
 
 std::string figure_csv(const Figure& figure) {

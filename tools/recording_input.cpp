@@ -13,23 +13,6 @@ namespace imunoise::tools {
 
 namespace {
 
-/// The channel to read when --channel is not given: the log's only imu_sample_t channel.
-std::string default_channel(const std::string& path) {
-  const std::vector<io::LcmLogChannel> channels = io::list_lcm_log_channels(path);
-  std::vector<std::string> found;
-  for (const io::LcmLogChannel& c : channels) {
-    if (c.type_name == "imunoise.imu_sample_t") found.push_back(c.name);
-  }
-  if (found.size() == 1) return found.front();
-  throw InputError(located_message(
-      path, 0, 0,
-      std::string(found.empty() ? "no imunoise.imu_sample_t channel"
-                                : "several imunoise.imu_sample_t channels") +
-          " in this LCM log; give --channel NAME (and --lcm-type FILE.lcm for an IMU message "
-          "type of your own); " +
-          io::describe_lcm_log_channels(channels)));
-}
-
 /// With --lcm-type and no --channel: the log's only channel carrying that type.
 std::string channel_of_type(const std::string& path, const io::LcmUserImuDecoder& decoder) {
   std::vector<std::string> found;
@@ -214,7 +197,10 @@ pipeline::Recording read_input_recording(const std::string& path, const io::Inpu
     if (source.channel.empty()) {
       source.channel = source.user_type
                            ? channel_of_type(path, io::LcmUserImuDecoder(*source.user_type))
-                           : default_channel(path);
+                           : io::only_imu_sample_channel(
+                                 path,
+                                 "give --channel NAME (and --lcm-type FILE.lcm for an IMU "
+                                 "message type of your own)");
     }
   }
   return io::read_recording_as(format, path, config, source, progress, threads);
