@@ -86,3 +86,17 @@ def test_the_gil_is_released_while_the_core_computes():
         count += 1
     t.join()
     assert count > 10_000, count
+
+
+def test_model_write_and_load_round_trip(tmp_path):
+    # Model.write and Model.load side by side: the file read back is the same model.yaml text
+    # and the same objects.
+    rng = np.random.default_rng(5)
+    x = rng.standard_normal(180_000) * 1e-3
+    model = imunoise.fit(imunoise.recording_from_arrays(50.0, gyro_x=x), interval_draws=0).model
+    model.write(tmp_path / "model.yaml")
+    back = imunoise.Model.load(tmp_path / "model.yaml")
+    assert back.yaml == model.yaml
+    assert back.data == model.data
+    assert back.term("gyro_x", "white_noise") == model.term("gyro_x", "white_noise")
+    assert not list(tmp_path.glob(".tmp-*"))  # the temporary file was renamed, none left
