@@ -49,6 +49,17 @@ std::string_view name_of(GmConvention convention) {
   return "unknown";
 }
 
+const std::map<std::string, GmConvention, std::less<>>& gm_conventions_by_name() {
+  static const std::map<std::string, GmConvention, std::less<>> map = [] {
+    std::map<std::string, GmConvention, std::less<>> m;
+    for (GmConvention c : {GmConvention::min_adev_at_tau_min, GmConvention::peak_match,
+                           GmConvention::sigma_equals_b})
+      m.emplace(std::string(name_of(c)), c);
+    return m;
+  }();
+  return map;
+}
+
 GaussMarkovPeak gauss_markov_adev_peak() {
   static const GaussMarkovPeak peak = compute_peak();
   return peak;

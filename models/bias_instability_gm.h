@@ -3,7 +3,10 @@
 /// cannot carry 1/f noise (theory.md §4.4 conventions (a)–(c), worked example §8.3).
 #pragma once
 
+#include <functional>
+#include <map>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "common/noise_coefficients.h"
@@ -21,6 +24,10 @@ enum class GmConvention {
 
 /// "min_adev_at_tau_min", "peak_match" or "sigma_equals_b".
 std::string_view name_of(GmConvention convention);
+
+/// Every convention by its name_of(), for the settings that choose one (CLI --gm-convention,
+/// the Python export).
+const std::map<std::string, GmConvention, std::less<>>& gm_conventions_by_name();
 
 /// Location and height of the first-order GM ADEV maximum in units of T_c and σ: x* = τ*/T_c
 /// and g* = ADEV(τ*)/σ, from the root of d/dx[(2x − 3 + 4e^{−x} − e^{−2x})/x²] = 0, i.e.

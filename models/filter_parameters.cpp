@@ -253,4 +253,11 @@ FilterParameters select_filter_parameters(const NoiseModel& model,
   return out;
 }
 
+const std::map<std::string, AxisChoice, std::less<>>& axis_choices_by_name() {
+  static const std::map<std::string, AxisChoice, std::less<>> map{
+      {"worst", AxisChoice::worst}, {"mean", AxisChoice::mean}, {"x", AxisChoice::x},
+      {"y", AxisChoice::y},         {"z", AxisChoice::z},       {"each", AxisChoice::each}};
+  return map;
+}
+
 }  // namespace imunoise::models

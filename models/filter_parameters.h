@@ -8,6 +8,8 @@
 #pragma once
 
 #include <array>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +29,9 @@ enum class AxisChoice {
   z,    ///< that axis only
   each  ///< every axis its own value (for formats with per-axis slots)
 };
+
+/// Every axis rule by the name settings use for it: worst, mean, x, y, z, each.
+const std::map<std::string, AxisChoice, std::less<>>& axis_choices_by_name();
 
 /// How the messages and the rule lines of select_filter_parameters() name the settings a caller
 /// offers its user. The defaults name the options; the CLI passes its flags.

@@ -123,10 +123,6 @@ std::string export_text(const std::string& model_yaml, const std::string& source
                         const std::string& format, double rate_hz, const std::string& axis,
                         bool conservative, const std::string& gm_convention,
                         double correction_interval_s) {
-  static const std::map<std::string, models::AxisChoice> kAxes{
-      {"worst", models::AxisChoice::worst}, {"mean", models::AxisChoice::mean},
-      {"x", models::AxisChoice::x},         {"y", models::AxisChoice::y},
-      {"z", models::AxisChoice::z},         {"each", models::AxisChoice::each}};
   const auto f = io::parse_export_format(format);
   if (!f) {
     std::string names;
@@ -134,16 +130,12 @@ std::string export_text(const std::string& model_yaml, const std::string& source
       names += (names.empty() ? "" : ", ") + std::string(io::export_format_name(e));
     throw InputError("format: unknown format '" + format + "'; choose one of " + names);
   }
-  const auto a = kAxes.find(axis);
-  if (a == kAxes.end()) {
+  const auto a = models::axis_choices_by_name().find(axis);
+  if (a == models::axis_choices_by_name().end()) {
     throw InputError("axis: expected worst, mean, x, y, z or each, got '" + axis + "'");
   }
-  std::optional<models::GmConvention> convention;
-  for (auto c : {models::GmConvention::min_adev_at_tau_min, models::GmConvention::peak_match,
-                 models::GmConvention::sigma_equals_b}) {
-    if (models::name_of(c) == gm_convention) convention = c;
-  }
-  if (!convention) {
+  const auto convention = models::gm_conventions_by_name().find(gm_convention);
+  if (convention == models::gm_conventions_by_name().end()) {
     throw InputError("gm_convention: unknown convention '" + gm_convention + "'");
   }
   const models::NoiseModel model = io::parse_model_yaml(model_yaml, source);
@@ -152,7 +144,7 @@ std::string export_text(const std::string& model_yaml, const std::string& source
   request.rate_hz = rate_hz;
   request.parameters.axis = a->second;
   request.parameters.conservative = conservative;
-  request.parameters.gm_convention = *convention;
+  request.parameters.gm_convention = convention->second;
   request.parameters.correction_interval_s = correction_interval_s;
   request.parameters.setting_names = {"axis", "correction_interval_s"};
   request.model_path = source;

@@ -35,11 +35,6 @@ struct ExportArgs {
   Verbosity verbosity;
 };
 
-const std::map<std::string, models::AxisChoice> kAxisChoices{
-    {"worst", models::AxisChoice::worst}, {"mean", models::AxisChoice::mean},
-    {"x", models::AxisChoice::x},         {"y", models::AxisChoice::y},
-    {"z", models::AxisChoice::z},         {"each", models::AxisChoice::each}};
-
 std::string format_names() {
   std::string names;
   for (auto f : io::all_export_formats())
@@ -64,7 +59,7 @@ void run_export(const ExportArgs& a, bool axis_given) {
   const auto model = io::load_model_yaml(a.model_path);
   io::ExportRequest request;
   request.rate_hz = a.rate_hz;
-  request.parameters.axis = kAxisChoices.at(a.axis);
+  request.parameters.axis = models::axis_choices_by_name().at(a.axis);
   request.parameters.conservative = a.conservative;
   request.parameters.gm_convention = gm_conventions().at(a.gm_convention);
   request.parameters.correction_interval_s = a.correction_interval_s;
@@ -133,7 +128,7 @@ void register_export_command(CLI::App& app) {
       sub->add_option("--axis", args->axis,
                       "how x, y, z become one value: worst (largest, default), mean (root mean "
                       "square), x, y, z, or each (per-axis slots)")
-          ->check(CLI::IsMember(kAxisChoices));
+          ->check(CLI::IsMember(models::axis_choices_by_name()));
   sub->add_flag("--conservative", args->conservative,
                 "overbounding set: upper interval ends, and B/GM/Q/R folded into N and K for "
                 "white + random-walk filters (rule written into the file)");

@@ -10,16 +10,9 @@
 
 namespace imunoise::tools {
 
-/// Command-line names → conventions; the names are models::name_of() of each convention.
-inline const std::map<std::string, models::GmConvention>& gm_conventions() {
-  static const std::map<std::string, models::GmConvention> map{
-      {std::string(models::name_of(models::GmConvention::min_adev_at_tau_min)),
-       models::GmConvention::min_adev_at_tau_min},
-      {std::string(models::name_of(models::GmConvention::peak_match)),
-       models::GmConvention::peak_match},
-      {std::string(models::name_of(models::GmConvention::sigma_equals_b)),
-       models::GmConvention::sigma_equals_b}};
-  return map;
+/// Command-line names → conventions (models::gm_conventions_by_name).
+inline const std::map<std::string, models::GmConvention, std::less<>>& gm_conventions() {
+  return models::gm_conventions_by_name();
 }
 
 }  // namespace imunoise::tools
