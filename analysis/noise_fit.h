@@ -181,6 +181,18 @@ struct CoefficientInterval {
 PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> points,
                                                      const FitResult& fit, double confidence);
 
+/// FIT's structure (its identified power-law terms, sinusoids and GM terms, T_c held) re-fitted
+/// on FIT.used by the same re-weighted NNLS with TERM — one FIT did not identify — held at
+/// HELD (c²·basis as a fixed offset, as profile_upper_bound() does). The model that
+/// lies at the edge of what the data allow for TERM: the identified terms of the result are
+/// where they move when TERM is as large as its bound (analysis/selection_uncertainty.h).
+/// The result's coefficients hold TERM at HELD; terms[TERM] stays not identified.
+/// @throws AnalysisError when a point of FIT.used is unusable; ContractViolation when TERM is
+///   identified in FIT, HELD is negative or not finite, or FIT.used does not index POINTS.
+FitResult refit_with_term_held(std::span<const FitPoint> points, const FitResult& fit,
+                               NoiseTerm term, double held,
+                               int weight_iterations = FitOptions{}.weight_iterations);
+
 /// Profile upper bound of a term FIT did not identify: the coefficient c at which forcing the
 /// term to c (c²·basis added as a fixed offset, FIT's other terms re-fitted by the same
 /// re-weighted NNLS, GM T_c held) raises the gamma deviance by χ²₁(CONFIDENCE)·f. Without

@@ -12,6 +12,7 @@
 #include "analysis/edf.h"
 #include "analysis/multirate_psd.h"
 #include "analysis/noise_terms.h"
+#include "analysis/selection_uncertainty.h"
 #include "analysis/variance_covariance.h"
 #include "common/errors.h"
 #include "models/bias_instability_gm.h"
@@ -342,6 +343,20 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
       }
     }
   }
+  // Upper bounds of the terms not identified, then the identified terms' intervals widened
+  // by them (analysis/selection_uncertainty.h): dropping K must not leave B's interval
+  // conditional on K = 0 when the data allow K up to its bound.
+  PerTerm<double> upper_bounds{};
+  for (NoiseTerm term : kNoiseTerms) {
+    upper_bounds[term] = out.fit.terms[term].identified
+                             ? 0.0
+                             : analysis::profile_upper_bound(points, out.fit, term,
+                                                             options.confidence,
+                                                             fit_options.weight_iterations,
+                                                             used_correlation);
+  }
+  const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
+      points, out.fit, intervals, upper_bounds, fit_options.weight_iterations);
   for (NoiseTerm term : kNoiseTerms) {
     const auto t = static_cast<std::size_t>(term);
     models::Estimate& e = model.terms[t];
@@ -349,14 +364,17 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     e.identified = out.fit.terms[t].identified && e.value > 0.0;
     e.method = "wnnls-oavar";
     if (e.identified) {
-      e.ci_low = std::min(intervals[t].low, e.value);
-      e.ci_high = std::max(intervals[t].high, e.value);
+      e.ci_low = std::min(widened[t].interval.low, e.value);
+      e.ci_high = std::max(widened[t].interval.high, e.value);
       e.interval_method = interval_method;
+      if (!widened[t].moved_by.empty()) {
+        e.interval_method += "; widened over " + widened[t].moved_by +
+                             " at its upper bound (model-selection uncertainty, "
+                             "analysis::selection_widened_intervals)";
+      }
     } else {
       e.ci_low = 0.0;
-      const double bound = analysis::profile_upper_bound(
-          points, out.fit, static_cast<NoiseTerm>(t), options.confidence,
-          fit_options.weight_iterations, used_correlation);
+      const double bound = upper_bounds[t];
       e.ci_high = std::isfinite(bound) ? bound : 0.0;
       e.interval_method = std::isfinite(bound)
                               ? "not identified; profile upper bound (deviance rise chi2_1 x "
