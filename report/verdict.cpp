@@ -249,7 +249,8 @@ std::string verdict_text(const models::NoiseModel& model, std::string_view model
   const std::vector<ExplainedFinding> findings = verdict_findings(model, model_path);
   out << "findings (" << findings.size() << "):" << (findings.empty() ? " none\n" : "\n");
   for (const ExplainedFinding& f : findings) {
-    wrap(out, "- " + f.where + ": " + f.text, "  ", "    ");
+    // The finding on one line, as written, so that it can be searched for.
+    out << "  - " << f.where << ": " << f.text << "\n";
     wrap(out, "cause: " + f.cause, "      ");
     wrap(out, "remedy: " + f.remedy, "      ");
   }
