@@ -13,8 +13,9 @@ namespace {
 constexpr std::string_view kStyle = R"(
 body{font-family:"DejaVu Sans",Helvetica,Arial,sans-serif;color:#222;max-width:1180px;margin:1.5em auto;padding:0 1em;line-height:1.4}
 h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
-dl.facts{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;margin:.8em 0}
-dl.facts dt{font-weight:bold}dl.facts dd{margin:0}
+dl.facts{display:grid;grid-template-columns:max-content minmax(0,1fr);gap:.15em 1em;margin:.8em 0}
+dl.facts dt{font-weight:bold}dl.facts dd{margin:0;overflow-wrap:anywhere}
+p,li{overflow-wrap:anywhere}
 table{border-collapse:collapse;margin:.8em 0;font-size:.9em}
 caption{text-align:left;font-weight:bold;padding:.3em 0}
 th,td{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top}
