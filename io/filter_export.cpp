@@ -469,6 +469,8 @@ const std::vector<ExportFormat>& all_export_formats() {
 
 std::string_view export_format_name(ExportFormat format) { return info(format).name; }
 
+std::string_view export_format_consumer(ExportFormat format) { return info(format).consumer; }
+
 std::optional<ExportFormat> parse_export_format(std::string_view name) {
   for (const auto& f : kFormats)
     if (name == f.name) return f.format;

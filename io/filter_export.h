@@ -40,6 +40,8 @@ enum class ExportFormat {
 const std::vector<ExportFormat>& all_export_formats();
 /// The name used on the command line ("kalibr", "kf-gins", "robot_localization", …).
 std::string_view export_format_name(ExportFormat format);
+/// The program that reads the format and its file ("Kalibr (imu.yaml)", "PX4 EKF2 (…)", …).
+std::string_view export_format_consumer(ExportFormat format);
 /// Parses a command-line name; nullopt if unknown.
 std::optional<ExportFormat> parse_export_format(std::string_view name);
 /// A file name that suits the format ("kalibr_imu.yaml", "imu_params.m", …).

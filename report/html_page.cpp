@@ -13,8 +13,9 @@ namespace {
 constexpr std::string_view kStyle = R"(
 body{font-family:"DejaVu Sans",Helvetica,Arial,sans-serif;color:#222;max-width:1180px;margin:1.5em auto;padding:0 1em;line-height:1.4}
 h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
-dl.facts{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;margin:.8em 0}
-dl.facts dt{font-weight:bold}dl.facts dd{margin:0}
+dl.facts{display:grid;grid-template-columns:max-content minmax(0,1fr);gap:.15em 1em;margin:.8em 0}
+dl.facts dt{font-weight:bold}dl.facts dd{margin:0;overflow-wrap:anywhere}
+p,li{overflow-wrap:anywhere}
 table{border-collapse:collapse;margin:.8em 0;font-size:.9em}
 caption{text-align:left;font-weight:bold;padding:.3em 0}
 th,td{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top}
@@ -25,6 +26,14 @@ figure svg{max-width:100%;height:auto;display:block}
 figcaption{font-size:.9em;color:#444;max-width:900px}
 pre{background:#f6f6f6;border:1px solid #ddd;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere;font-size:.85em}
 footer{margin-top:3em;font-size:.8em;color:#666}
+div.wide{overflow-x:auto;max-width:100%}
+details{margin:.8em 0}details>summary{cursor:pointer;font-weight:bold;padding:.3em 0}
+ul.findings{padding-left:1.2em}ul.findings li{margin:.5em 0}
+ul.findings .cause,ul.findings .remedy{display:block;margin-left:.5em}
+ul.findings .remedy{color:#064}
+#verdict{border:2px solid #888;border-radius:6px;padding:0 1em .6em;margin-top:1em}
+@media (max-width:640px){body{margin:.5em auto;padding:0 .5em}table{font-size:.8em}
+th,td{padding:.2em .3em}td.num{white-space:normal}h1{font-size:1.3em}#verdict{padding:0 .5em .5em}}
 )";
 
 std::string escaped(std::string_view text) {
@@ -44,7 +53,12 @@ bool looks_numeric(std::string cell) {
 }
 
 void append_table(std::string& out, const Table& table) {
-  out.append("<table");
+  if (table.folded) {
+    out.append("<details><summary>")
+        .append(escaped(table.caption.empty() ? table.id : table.caption))
+        .append("</summary>\n");
+  }
+  out.append("<div class=\"wide\"><table");
   if (!table.id.empty()) out.append(" id=\"").append(escaped(table.id)).append("\"");
   out.append(">\n");
   if (!table.caption.empty())
@@ -63,7 +77,20 @@ void append_table(std::string& out, const Table& table) {
     }
     out.append("</tr>\n");
   }
-  out.append("</tbody></table>\n");
+  out.append("</tbody></table></div>\n");
+  if (table.folded) out.append("</details>\n");
+}
+
+void append_findings(std::string& out, const std::vector<FindingItem>& findings) {
+  out.append("<ul class=\"findings\">\n");
+  for (const FindingItem& f : findings) {
+    out.append("<li><strong>").append(escaped(f.where)).append("</strong>: ");
+    out.append(escaped(f.text));
+    out.append("<span class=\"cause\">Cause: ").append(escaped(f.cause)).append("</span>");
+    out.append("<span class=\"remedy\">Remedy: ").append(escaped(f.remedy)).append("</span>");
+    out.append("</li>\n");
+  }
+  out.append("</ul>\n");
 }
 
 void append_figure(std::string& out, const FigureBlock& figure) {
@@ -111,7 +138,12 @@ std::string render_html(const ReportPage& page) {
     for (const std::string& p : section.paragraphs) {
       out.append("<p>").append(escaped(p)).append("</p>\n");
     }
-    for (const Table& t : section.tables) append_table(out, t);
+    // Open tables, then the findings, then the folded (detail) tables.
+    for (const Table& t : section.tables)
+      if (!t.folded) append_table(out, t);
+    if (!section.findings.empty()) append_findings(out, section.findings);
+    for (const Table& t : section.tables)
+      if (t.folded) append_table(out, t);
     for (const FigureBlock& f : section.figures) append_figure(out, f);
     if (!section.bullets.empty()) {
       out.append("<ul>\n");

@@ -1,8 +1,9 @@
 /// @file
 /// @brief A self-contained HTML report page (inline SVG and CSS, no script, no external
-/// resource): a title, key facts, then sections of paragraphs, tables, figures, bullet lists and
-/// command lines. Pure: a ReportPage in, the text of one HTML document out. All text is
-/// escaped; figure SVG (from render_svg) is inlined as it is.
+/// resource): a title, key facts, then sections of paragraphs, findings with cause and remedy,
+/// tables (each scrolling sideways on a narrow screen, detail tables folded in `<details>`),
+/// figures, bullet lists and command lines. Pure: a ReportPage in, the text of one HTML document
+/// out. All text is escaped; figure SVG (from render_svg) is inlined as it is.
 #pragma once
 
 #include <string>
@@ -18,6 +19,17 @@ struct Table {
   std::string caption;
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
+  /// Folded: shown as `<details>` whose summary is the caption (a detail table, opened by a
+  /// click, no script).
+  bool folded = false;
+};
+
+/// A finding as the verdict lists it: where, what, why, and what to do.
+struct FindingItem {
+  std::string where;   ///< "recording", "gyro_x, gyro_y", …
+  std::string text;    ///< the finding
+  std::string cause;   ///< why it happens
+  std::string remedy;  ///< the command or flag that addresses it
 };
 
 /// A figure as it appears on the page: `<figure id="fig-NAME">` with the SVG, the caption and
@@ -30,7 +42,8 @@ struct FigureBlock {
       links;  ///< (text, href), e.g. ("data", "plots/x.csv")
 };
 
-/// One section: `<section id="ID"><h2>HEADING</h2>…` with its parts in this order.
+/// One section: `<section id="ID"><h2>HEADING</h2>…` with its parts in this order (findings:
+/// see below).
 struct PageSection {
   std::string id;
   std::string heading;
@@ -39,6 +52,9 @@ struct PageSection {
   std::vector<FigureBlock> figures;
   std::vector<std::string> bullets;
   std::vector<std::string> code_lines;  ///< shown as one preformatted block (e.g. commands)
+  /// `<ul class="findings">`, each item with its cause and remedy; shown after the open
+  /// tables and before the folded ones.
+  std::vector<FindingItem> findings = {};
 };
 
 struct ReportPage {

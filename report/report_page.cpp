@@ -16,6 +16,7 @@
 #include "report/figures.h"
 #include "report/result_tables.h"
 #include "report/svg_plot.h"
+#include "report/verdict.h"
 
 namespace imunoise::report {
 
@@ -55,6 +56,7 @@ PageSection summary_section(const models::NoiseModel& model) {
   s.tables.push_back(summary_table(model));
   Table gm = gauss_markov_table(model);
   if (!gm.rows.empty()) s.tables.push_back(std::move(gm));
+  for (Table& t : s.tables) t.folded = true;
   return s;
 }
 
@@ -71,6 +73,7 @@ PageSection drift_section(const io::ResultsDirectory& r, std::vector<ReportFile>
     s.figures.push_back(add_figure(drift_figure(*r.drift_envelope, r.drift_segments), files));
   }
   Table t = drift_table(summary);
+  t.folded = true;
   if (!t.rows.empty()) s.tables.push_back(std::move(t));
   return s;
 }
@@ -80,6 +83,7 @@ PageSection sampling_section(const pipeline::SamplingReport& report,
   const pipeline::TimingReport& timing = report.timing;
   PageSection s{"sampling", "Sampling", {}, {}, {}, {}, {}};
   s.tables.push_back(sampling_table(report));
+  s.tables.back().folded = true;
   if (!timing.has_timestamps) {
     s.paragraphs.push_back(
         "The recording has no time stamps (a fixed rate was given): no "
@@ -104,6 +108,58 @@ PageSection sampling_section(const pipeline::SamplingReport& report,
   return s;
 }
 
+/// The drift results' findings, one line each.
+std::vector<std::string> drift_findings(const io::ResultsDirectory& r) {
+  std::vector<std::string> out;
+  if (!r.drift_summary) return out;
+  const pipeline::DriftSummary& s = *r.drift_summary;
+  if (!s.motion.stationary) {
+    out.push_back("drift: the recording does not look stationary: " + s.motion.reason);
+  }
+  for (const pipeline::DriftConsistency& c : s.consistency) {
+    if (c.nees_inside) continue;
+    out.push_back("drift at " + num(c.time_s, 6) + " s: mean NEES " + num(c.mean_nees, 3) +
+                  " is outside its 95 % band: the model's prediction does not match the "
+                  "recorded drift there");
+  }
+  return out;
+}
+
+/// The verdict: the matrices, what was identified, every finding with cause and remedy, and
+/// which export suits which filter (report/verdict.h).
+PageSection verdict_section(const io::ResultsDirectory& r) {
+  PageSection s{"verdict", "Verdict", {}, {}, {}, {}, {}};
+  const std::string model_path = (std::filesystem::path(r.dir) / "model.yaml").string();
+  std::vector<ExplainedFinding> explained;
+  if (r.model) {
+    const models::NoiseModel& m = *r.model;
+    s.paragraphs.push_back(std::to_string(m.axes.size()) + " axes fitted from " +
+                           num(m.duration_s / 3600.0, 3) + " h at " + num(m.sample_rate_hz, 6) +
+                           " Hz. The detail tables, figures and checks follow below (tables "
+                           "folded: click to open).");
+    for (const std::string& line : identification_lines(m)) s.paragraphs.push_back(line);
+    for (const SensorKind kind : kSensorKinds) {
+      Table t = verdict_matrix(m, kind);
+      if (!t.rows.empty()) s.tables.push_back(std::move(t));
+    }
+    explained = verdict_findings(m, model_path);
+  }
+  for (const std::string& line : drift_findings(r)) {
+    explained.push_back(
+        explain_finding("drift", {line, r.model ? &*r.model : nullptr, nullptr, model_path}));
+  }
+  for (const ExplainedFinding& f : explained)
+    s.findings.push_back({f.where, f.text, f.cause, f.remedy});
+  if (explained.empty())
+    s.paragraphs.push_back("No data-quality, fit or consistency finding: nothing to act on.");
+  if (r.model) {
+    Table guide = export_guide_table(model_path);
+    guide.folded = true;
+    s.tables.push_back(std::move(guide));
+  }
+  return s;
+}
+
 std::vector<std::string> findings(const io::ResultsDirectory& r) {
   std::vector<std::string> out;
   if (r.model) {
@@ -115,18 +171,7 @@ std::vector<std::string> findings(const io::ResultsDirectory& r) {
       if (!axis.fit_note.empty()) out.push_back(axis.name + " fit: " + axis.fit_note);
     }
   }
-  if (r.drift_summary) {
-    const pipeline::DriftSummary& s = *r.drift_summary;
-    if (!s.motion.stationary) {
-      out.push_back("drift: the recording does not look stationary: " + s.motion.reason);
-    }
-    for (const pipeline::DriftConsistency& c : s.consistency) {
-      if (c.nees_inside) continue;
-      out.push_back("drift at " + num(c.time_s, 6) + " s: mean NEES " + num(c.mean_nees, 3) +
-                    " is outside its 95 % band: the model's prediction does not match the "
-                    "recorded drift there");
-    }
-  }
+  for (std::string& line : drift_findings(r)) out.push_back(std::move(line));
   if (out.empty()) out.push_back("No data-quality or consistency problems were found.");
   return out;
 }
@@ -193,6 +238,7 @@ ReportDocument build_report_page(const io::ResultsDirectory& r, const std::strin
   }
   page.facts.push_back({"written", written + " by imunoise"});
 
+  page.sections.push_back(verdict_section(r));
   if (r.model) page.sections.push_back(summary_section(*r.model));
   if (r.model && r.allan) {
     PageSection s{"allan", "Allan deviation", {}, {}, {}, {}, {}};
@@ -208,7 +254,14 @@ ReportDocument build_report_page(const io::ResultsDirectory& r, const std::strin
   }
   if (r.drift_summary) page.sections.push_back(drift_section(r, files));
   if (r.sampling) page.sections.push_back(sampling_section(r.sampling->report, files));
-  page.sections.push_back({"findings", "Findings", {}, {}, {}, findings(r), {}});
+  page.sections.push_back({"findings",
+                           "Findings as written",
+                           {"Each line as the analysis wrote it; the verdict above explains "
+                            "them."},
+                           {},
+                           {},
+                           findings(r),
+                           {}});
   page.sections.push_back({"exports",
                            "Files in this directory",
                            {"Every plot's data is in plots/NAME.csv next to its SVG."},

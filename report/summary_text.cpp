@@ -11,6 +11,7 @@
 #include "common/sensor_kind.h"
 #include "models/datasheet_units.h"
 #include "pipeline/recording.h"
+#include "report/verdict.h"
 
 namespace imunoise::report {
 
@@ -30,7 +31,8 @@ std::string estimate_text(const models::Estimate& e, const models::DatasheetUnit
 }  // namespace
 
 std::string summary_text(const models::NoiseModel& model,
-                         const std::optional<std::array<NoiseCoefficients, 6>>& truth) {
+                         const std::optional<std::array<NoiseCoefficients, 6>>& truth,
+                         std::string_view model_path) {
   using pipeline::kImuChannelNames;
   std::ostringstream out;
   out << "imunoise analyze: " << model.source << " — " << model.samples << " samples at "
@@ -39,6 +41,8 @@ std::string summary_text(const models::NoiseModel& model,
       << significant_number_text(100.0 * model.confidence, 3)
       << " % intervals, '-' = not identified (upper bound);\n"
       << "ieee952 = the graphical slope read-off of the OADEV curve, for traceability\n";
+  out << "\n" << verdict_text(model, model_path);
+  out << "\ndetails: per sensor and term each axis\n";
   for (const SensorKind kind : kSensorKinds) {
     out << "\n" << sensor_name(kind) << "\n";
     for (NoiseTerm term : kNoiseTerms) {
@@ -64,15 +68,6 @@ std::string summary_text(const models::NoiseModel& model,
         out << "\n";
       }
     }
-  }
-  for (const models::AxisModel& axis : model.axes) {
-    if (axis.psd_check_pass && !*axis.psd_check_pass) {
-      out << "\nPSD cross-check FAILED for " << axis.name << ": " << axis.psd_check_note << "\n";
-    }
-  }
-  if (!model.data_quality.empty()) {
-    out << "\ndata quality:\n";
-    for (const std::string& line : model.data_quality) out << "  - " << line << "\n";
   }
   return out.str();
 }

@@ -9,6 +9,7 @@
 
 #include "io/atomic_output.h"
 #include "io/results_directory.h"
+#include "report/fleet_page.h"
 #include "report/html_page.h"
 #include "report/report_page.h"
 
@@ -38,6 +39,12 @@ ReportOutput write_report(const std::string& dir) {
   }
   io::write_file_atomically(html_path, html);
   return {html_path, figure_count(doc.page)};
+}
+
+std::string write_fleet_report(const std::string& dir, const pipeline::FleetResult& result) {
+  const std::string path = (std::filesystem::path(dir) / "fleet.html").string();
+  io::write_file_atomically(path, render_html(build_fleet_page(result, utc_now_text())));
+  return path;
 }
 
 }  // namespace imunoise::report

@@ -8,6 +8,8 @@
 
 #include <string>
 
+#include "pipeline/fleet.h"
+
 namespace imunoise::report {
 
 /// What write_report produced.
@@ -22,5 +24,9 @@ struct ReportOutput {
 /// drift_summary.json), naming the file when one of them is malformed, or naming the path
 /// when a file cannot be written.
 ReportOutput write_report(const std::string& dir);
+
+/// Writes DIR/fleet.html, the page of `imunoise fleet` (report/fleet_page.h), atomically; the
+/// directory must exist. Returns the path.
+std::string write_fleet_report(const std::string& dir, const pipeline::FleetResult& result);
 
 }  // namespace imunoise::report

@@ -121,7 +121,7 @@ void run_analyze(const AnalyzeArgs& args, io::StageTimes& times) {
   times.mark("outputs");
   const report::ReportOutput report = report::write_report(dir.string());
   times.mark("report");
-  std::cout << report::summary_text(model, truth);
+  std::cout << report::summary_text(model, truth, (dir / "model.yaml").string());
   std::cout << "\nwrote " << (dir / "model.yaml").string()
             << ", allan.csv, psd.csv, sampling_report.json, plots/\nreport: " << report.html_path
             << "\n";

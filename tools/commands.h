@@ -22,5 +22,6 @@ void register_drift_command(CLI::App& app);        ///< imunoise drift (INS drif
 void register_simulate_command(CLI::App& app);     ///< imunoise simulate
 void register_report_command(CLI::App& app);       ///< imunoise report (report.html)
 void register_fftw_wisdom_command(CLI::App& app);  ///< imunoise fftw-wisdom (PSD plans)
+void register_fleet_command(CLI::App& app);        ///< imunoise fleet (many units, spec)
 
 }  // namespace imunoise::tools

@@ -2,7 +2,9 @@
 # Browser test of the HTML report (issue 7): headless Chromium renders DIR/report.html of the
 # reference-IMU demo inside `unshare -n` (no network at all), writes DIR/report.png next to the
 # report, and the test checks that the page loads without console messages or resource loads,
-# and that the rendered DOM holds the title, the summary table, every plot and the sections.
+# and that the rendered DOM holds the title, the summary table, every plot and the sections;
+# that the verdict is the first section and each of its findings has a cause and a remedy; and
+# that at a phone's width (390 px) the page does not scroll sideways (report-phone.png).
 #
 #   report_browser_test.sh IMUNOISE_BINARY SOURCE_DIR [WORK_DIR]
 # WORK_DIR (default: a new temp dir) is emptied and receives the demo (demo/: the report and
@@ -108,7 +110,8 @@ render() {
     --disable-component-update --disable-sync --disable-extensions --disable-default-apps \
     --user-data-dir="$profile" --enable-logging=stderr --v=0 \
     --vmodule=file_url_loader_factory=1,network_delegate=1 --virtual-time-budget=5000 \
-    --window-size="1280,$WINDOW_HEIGHT" --screenshot="$png" --dump-dom "file://$page" \
+    ${EXTRA_FLAGS:-} --window-size="${WINDOW_WIDTH:-1280},$WINDOW_HEIGHT" --screenshot="$png" \
+    --dump-dom "file://$page" \
     >"$dom" 2>"$log"
   local rc=$?
   rm -rf "$profile"
@@ -329,6 +332,37 @@ while IFS= read -r href; do
 done < <(grep -o 'href="[^"]*"' "$FLAT" | sed 's/^href="//; s/"$//' |
   grep -v -E '^(#|[a-zA-Z][a-zA-Z0-9+.-]*:|//)' | sort -u)
 
+# The verdict is the first section after the header (issue 23), and every finding in it names
+# a cause and a remedy.
+first_section="$(awk '{
+  h = index($0, "</header>"); if (!h) exit
+  rest = substr($0, h); if (match(rest, /<section[^>]*>/)) print substr(rest, RSTART, RLENGTH)
+}' "$FLAT")"
+if [[ "$first_section" == *'id="verdict"'* ]]; then
+  ok "the first section after the header is the verdict"
+else
+  fail "the first section after the header is not the verdict: '${first_section:-none}'"
+fi
+verdict="$(element "$FLAT" '<section[^>]* id="verdict"' '</section>')"
+items="$(sed 's/<li>/\n<li>/g' <<<"$verdict" | grep '^<li>' | sed 's/<\/li>.*//')"
+n_items=0
+while IFS= read -r item; do
+  [ -z "$item" ] && continue
+  n_items=$((n_items + 1))
+  if ! grep -q 'class="cause">Cause: [^<]' <<<"$item" ||
+    ! grep -q 'class="remedy">Remedy: [^<]' <<<"$item"; then
+    fail "a verdict finding lacks a cause or a remedy: ${item:0:200}"
+  fi
+done <<<"$items"
+ok "verdict: $n_items finding(s), each with a cause and a remedy"
+for id in verdict-gyro verdict-accel; do
+  if [ -n "$(element "$FLAT" "<table[^>]* id=\"$id\"" '</table>')" ]; then
+    ok "verdict matrix #$id"
+  else
+    fail "no verdict matrix <table id=\"$id\">"
+  fi
+done
+
 for section in findings exports commands; do
   if [ -n "$(element "$FLAT" "<section[^>]* id=\"$section\"" '</section>')" ]; then
     ok "section #$section"
@@ -345,6 +379,57 @@ external="$(grep -o -E "<($LOADING_TAGS)[[:space:]][^>]*(src|href|data)=\"[^\"#]
 css_urls="$(grep -o -E "@import[^;]*|url\([^)]*\)" "$FLAT" |
   grep -v -E "^url\( *['\"]?(#|data:)" | head -n 5)"
 [ -z "$css_urls" ] || fail "the page's CSS imports or references a URL: $css_urls"
+
+# --- 3. phone width ------------------------------------------------------------------------------
+# The page at a phone's CSS width (390 px). Headless Chromium lays a window out at least 500 px
+# wide whatever --window-size says (the PNG is only cropped), so the test's own probe page holds
+# the report in a 390 px wide iframe — whose viewport the report's media queries see — and a
+# script that measures the report's layout there and writes the numbers into the probe's DOM
+# (--allow-file-access-from-files lets the file:// probe read the file:// report). The page must
+# not scroll sideways (wide tables scroll inside their own box) and the verdict must fit. The
+# report itself is not changed and still has no script.
+PHONE_WIDTH=390
+PROBE="$WORK/phone-probe.html"
+PHONE_PNG="$DIR/report-phone.png"
+cat >"$PROBE" <<EOF
+<!DOCTYPE html><html><head><meta charset="utf-8"><title>phone probe</title>
+<style>body{margin:0}iframe{border:0;width:${PHONE_WIDTH}px;height:4000px;display:block}</style>
+</head><body><iframe id="report" src="file://$REPORT"></iframe>
+<script>
+document.getElementById("report").addEventListener("load", function () {
+  var out = document.createElement("pre");
+  try {
+    var doc = this.contentDocument, root = doc.documentElement;
+    var verdict = doc.getElementById("verdict").getBoundingClientRect();
+    out.textContent = "probe: inner_width=" + this.contentWindow.innerWidth + " scroll_width=" +
+      root.scrollWidth + " client_width=" + root.clientWidth + " verdict_left=" +
+      Math.round(verdict.left) + " verdict_right=" + Math.round(verdict.right);
+  } catch (e) { out.textContent = "probe-error: " + e; }
+  document.body.appendChild(out);
+});
+</script></body></html>
+EOF
+rm -f "$PHONE_PNG"
+PHONE_DOM="$WORK/report.phone.dom.html"
+if EXTRA_FLAGS=--allow-file-access-from-files WINDOW_WIDTH=500 WINDOW_HEIGHT=4000 \
+  render "$PROBE" "$PHONE_PNG" "$PHONE_DOM" "$WORK/report.phone.chromium.log"; then
+  probe="$(grep -o 'probe: inner_width=[0-9]* scroll_width=[0-9]* client_width=[0-9]* verdict_left=-\{0,1\}[0-9]* verdict_right=-\{0,1\}[0-9]*' "$PHONE_DOM" | head -n 1)"
+  if [ -z "$probe" ]; then
+    fail "phone width: the layout probe wrote nothing: $(grep -o 'probe-error[^<]*' "$PHONE_DOM")"
+  else
+    read -r iw sw cw vl vr <<<"$(sed 's/probe: //; s/[a-z_]*=//g' <<<"$probe")"
+    if [ "$iw" -ne "$PHONE_WIDTH" ]; then
+      fail "phone width: the report's viewport is $iw px, not $PHONE_WIDTH ($probe)"
+    elif [ "$sw" -le "$cw" ] && [ "$vl" -ge 0 ] && [ "$vr" -le "$cw" ]; then
+      ok "phone width $PHONE_WIDTH px: no sideways scroll, the verdict fits ($probe)"
+    else
+      fail "phone width $PHONE_WIDTH px: the page overflows the window ($probe)"
+    fi
+  fi
+  [ -s "$PHONE_PNG" ] && ok "phone screenshot $PHONE_PNG (the report in the left $PHONE_WIDTH px)"
+else
+  fail "chromium exited with an error on the phone-width probe"
+fi
 
 echo "report: $REPORT"
 echo "screenshot: $PNG"

@@ -154,8 +154,8 @@ TEST(ReportPage, EverySectionInOrderWithItsTablesAndFigures) {
   const ReportDocument doc = build_report_page(full_results(), "now");
   const ReportPage& page = doc.page;
   EXPECT_EQ(section_ids(page),
-            (std::vector<std::string>{"summary", "allan", "psd", "drift", "sampling", "findings",
-                                      "exports", "commands"}));
+            (std::vector<std::string>{"verdict", "summary", "allan", "psd", "drift", "sampling",
+                                      "findings", "exports", "commands"}));
   EXPECT_EQ(table_ids(*section_of(page, "summary")),
             (std::vector<std::string>{"summary-table", "gauss-markov-table"}));
   EXPECT_EQ(section_of(page, "summary")->tables[0].rows.size(), 2u * 5u);  // axes × terms
@@ -230,6 +230,41 @@ TEST(ReportPage, FindingsCollectTheModelAndTheDriftProblems) {
             (std::vector<std::string>{"No data-quality or consistency problems were found."}));
 }
 
+TEST(ReportPage, TheVerdictComesFirstWithMatricesFindingsAndTheExportGuide) {
+  const ReportPage page = build_report_page(full_results(), "now").page;
+  ASSERT_FALSE(page.sections.empty());
+  const PageSection& verdict = page.sections.front();
+  EXPECT_EQ(verdict.id, "verdict");
+  // One matrix per sensor (terms down, axes across), then the folded export guide.
+  EXPECT_EQ(table_ids(verdict),
+            (std::vector<std::string>{"verdict-gyro", "verdict-accel", "export-guide"}));
+  EXPECT_FALSE(verdict.tables[0].folded);
+  EXPECT_TRUE(verdict.tables[2].folded);
+  EXPECT_EQ(verdict.tables[0].header, (std::vector<std::string>{"term [unit]", "gyro_x"}));
+  EXPECT_EQ(verdict.tables[0].rows.size(), 5u);
+  // Every finding of the model and of the drift run, each with a cause and a remedy.
+  std::vector<std::string> where;
+  for (const FindingItem& f : verdict.findings) {
+    where.push_back(f.where);
+    EXPECT_FALSE(f.cause.empty()) << f.text;
+    EXPECT_FALSE(f.remedy.empty()) << f.text;
+  }
+  EXPECT_EQ(where, (std::vector<std::string>{"recording", "accel_z", "accel_z", "drift", "drift"}));
+  EXPECT_EQ(verdict.findings[1].text, "model 5 dB below the PSD");
+  EXPECT_EQ(verdict.findings[2].text, "K not identified");
+  // The detail tables of the other sections are folded.
+  for (const PageSection& s : page.sections) {
+    if (s.id == "verdict") continue;
+    for (const Table& t : s.tables) EXPECT_TRUE(t.folded) << t.id;
+  }
+  // The HTML: the verdict is the first section after the header.
+  const std::string html = render_html(page);
+  const std::size_t header_end = html.find("</header>");
+  ASSERT_NE(header_end, std::string::npos);
+  EXPECT_EQ(html.find("<section", header_end), html.find("<section id=\"verdict\">"));
+  EXPECT_NE(html.find("<details><summary>Which export for which filter"), std::string::npos);
+}
+
 TEST(ReportPage, ExportsListEachFileWithItsSizeAndWhatItIs) {
   const ReportPage page = build_report_page(full_results(), "now").page;
   EXPECT_EQ(section_of(page, "exports")->bullets,
@@ -283,7 +318,11 @@ TEST(ReportPage, OnlyTheSectionsWhoseResultsAreThere) {
   EXPECT_EQ(doc.page.facts,
             (std::vector<std::pair<std::string, std::string>>{{"written", "now by imunoise"}}));
   EXPECT_EQ(section_ids(doc.page),
-            (std::vector<std::string>{"drift", "findings", "exports", "commands"}));
+            (std::vector<std::string>{"verdict", "drift", "findings", "exports", "commands"}));
+  // Without a model the verdict holds the drift findings only.
+  const PageSection& verdict = doc.page.sections.front();
+  EXPECT_TRUE(verdict.tables.empty());
+  EXPECT_EQ(verdict.findings.size(), 2u);
   EXPECT_TRUE(section_of(doc.page, "drift")->figures.empty());
   EXPECT_TRUE(doc.plot_files.empty());
   EXPECT_EQ(figure_count(doc.page), 0);

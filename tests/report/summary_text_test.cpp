@@ -89,12 +89,44 @@ TEST(SummaryText, HeaderValuesInDatasheetUnitsAndFindings) {
             "    gyro_y: -");
   // accel_x is listed under accel only.
   for (std::size_t i = gyro; i < accel; ++i) EXPECT_EQ(lines[i].find("accel_x"), std::string::npos);
-  EXPECT_LT(index_of(lines, "PSD cross-check FAILED for accel_x: model 5 dB below the PSD"),
+  // The verdict comes first, after the header and a blank line; the details follow it.
+  EXPECT_EQ(lines[2], "");
+  EXPECT_EQ(lines[3], "verdict");
+  const std::size_t details = index_of(lines, "details: per sensor and term each axis");
+  ASSERT_LT(details, gyro);
+  // Each finding of the verdict (data quality, failed PSD check), then its cause and remedy.
+  const std::size_t gap = index_of(lines, "  - recording: 2 gaps in the time stamps");
+  const std::size_t psd = index_of(lines, "  - accel_x: model 5 dB below the PSD");
+  ASSERT_LT(gap, details);
+  ASSERT_LT(psd, details);
+  for (std::size_t at : {gap, psd}) {
+    EXPECT_EQ(lines[at + 1].rfind("      cause: ", 0), 0u) << lines[at + 1];
+    std::size_t remedy = at + 2;  // after the cause's continuation lines
+    while (remedy < details && lines[remedy].rfind("      remedy: ", 0) != 0 &&
+           lines[remedy].rfind("      ", 0) == 0)
+      ++remedy;
+    EXPECT_EQ(lines[remedy].rfind("      remedy: ", 0), 0u) << lines[remedy];
+  }
+}
+
+TEST(SummaryText, TheVerdictMatrixHasATermPerRowAndAnAxisPerColumn) {
+  const std::vector<std::string> lines =
+      lines_of(summary_text(example_model(), std::nullopt, "out/model.yaml"));
+  const models::DatasheetUnit n = models::datasheet_unit(NoiseTerm::white_noise, SensorKind::gyro);
+  const models::DatasheetUnit k = models::datasheet_unit(NoiseTerm::random_walk, SensorKind::gyro);
+  const std::size_t head = index_of(lines, "  gyro               gyro_y");
+  ASSERT_LT(head, lines.size());
+  EXPECT_EQ(lines[head + 2], "  N [" + std::string(n.ascii) + "]    " +
+                                 significant_number_text(1e-4 * n.factor, 3) + " [" +
+                                 significant_number_text(9e-5 * n.factor, 3) + ", " +
+                                 significant_number_text(1.1e-4 * n.factor, 3) + "]");
+  EXPECT_EQ(lines[head + 4], "  K [" + std::string(k.ascii) + "]  < " +
+                                 significant_number_text(3e-7 * k.factor, 2) + " (n.i.)");
+  // The export guide names the model file the run wrote.
+  EXPECT_LT(index_of(lines,
+                     "export for your filter: imunoise export out/model.yaml --to FORMAT -o FILE, "
+                     "with FORMAT for:"),
             lines.size());
-  const std::size_t quality = index_of(lines, "data quality:");
-  ASSERT_LT(quality + 1, lines.size());
-  EXPECT_EQ(lines[quality + 1], "  - 2 gaps in the time stamps");
-  EXPECT_EQ(lines.back(), "  - 2 gaps in the time stamps");
 }
 
 TEST(SummaryText, TrueValuesAreMarkedInsideOrOutsideTheInterval) {
