@@ -781,18 +781,15 @@ double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fi
 
 FitResult refit_with_term_held(std::span<const FitPoint> points, const FitResult& fit,
                                NoiseTerm term, double held, int weight_iterations) {
-  IMUNOISE_EXPECT(!fit.terms[term].identified,
-                  "refit_with_term_held: the term is identified in the fit");
-  IMUNOISE_EXPECT(std::isfinite(held) && held >= 0.0,
-                  "refit_with_term_held: the held coefficient must be finite and >= 0");
-  IMUNOISE_EXPECT(fit.used.size() >= 2, "refit_with_term_held: the fit uses fewer than 2 points");
+  IMUNOISE_EXPECT(
+      !fit.terms[term].identified && std::isfinite(held) && held >= 0.0 && fit.used.size() >= 2,
+      "refit_with_term_held: needs a dropped term, a finite value >= 0 and 2 used points");
   const Data data = used_data(points, fit.used, "refit_with_term_held");
   const std::vector<Column> columns = structure_columns(fit);
   Eigen::VectorXd offset(static_cast<Eigen::Index>(data.size()));
-  for (std::size_t k = 0; k < data.size(); ++k) {
+  for (std::size_t k = 0; k < data.size(); ++k)
     offset(static_cast<Eigen::Index>(k)) =
         held * held * term_basis(term, data.tau[k], fit.hadamard);
-  }
   const Solution s = solve(data, columns, fit.hadamard, weight_iterations, offset);
   FitResult r = make_result(points, data, columns, s, fit.hadamard, fit.effective_points, "",
                             /*residuals=*/false);

@@ -348,12 +348,11 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // conditional on K = 0 when the data allow K up to its bound.
   PerTerm<double> upper_bounds{};
   for (NoiseTerm term : kNoiseTerms) {
-    upper_bounds[term] = out.fit.terms[term].identified
-                             ? 0.0
-                             : analysis::profile_upper_bound(points, out.fit, term,
-                                                             options.confidence,
-                                                             fit_options.weight_iterations,
-                                                             used_correlation);
+    upper_bounds[term] =
+        out.fit.terms[term].identified
+            ? 0.0
+            : analysis::profile_upper_bound(points, out.fit, term, options.confidence,
+                                            fit_options.weight_iterations, used_correlation);
   }
   const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
       points, out.fit, intervals, upper_bounds, fit_options.weight_iterations);

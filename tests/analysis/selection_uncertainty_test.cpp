@@ -109,8 +109,7 @@ TEST(SelectionWidenedIntervals, ADroppedRandomWalkAtItsBoundLowersTheFlickerEnd)
   const FitResult held = refit_with_term_held(points, fit, NoiseTerm::random_walk, bound);
   const double ratio = held.terms[kB].value / b;
   ASSERT_LT(ratio, 1.0);
-  const double expected_low =
-      b * std::exp(-std::hypot(std::log(1.0 / 0.95), std::log(ratio)));
+  const double expected_low = b * std::exp(-std::hypot(std::log(1.0 / 0.95), std::log(ratio)));
   EXPECT_NEAR(w[NoiseTerm::bias_instability].interval.low, expected_low, 1e-14 * b);
   EXPECT_LT(expected_low, 0.95 * b);
   EXPECT_EQ(w[NoiseTerm::bias_instability].interval.high, 1.05 * b);
