@@ -17,18 +17,6 @@ namespace {
 
 std::string text(std::string_view s) { return std::string(s); }
 
-/// The term a fit-note part names first ("random_walk dropped: …"), nullopt for a
-/// Gauss–Markov or sinusoid column or any other text.
-std::optional<NoiseTerm> leading_term(std::string_view note) {
-  for (NoiseTerm term : kNoiseTerms) {
-    const std::string_view name = term_name(term);
-    if (note.substr(0, name.size()) == name && note.size() > name.size() &&
-        note[name.size()] == ' ')
-      return term;
-  }
-  return std::nullopt;
-}
-
 std::string term_remedy(const FindingContext& c) {
   const std::optional<NoiseTerm> term = leading_term(c.text);
   if (!term || !c.axis) {
@@ -342,6 +330,16 @@ std::string unidentified_term_remedy(const models::AxisModel& axis, NoiseTerm te
          significant_number_text(axis.fit_tau_min_s, 2) + "–" +
          significant_number_text(axis.fit_tau_max_s, 2) +
          " s), so it is smaller than the bound; nothing to do: filters take the bound";
+}
+
+std::optional<NoiseTerm> leading_term(std::string_view note) {
+  for (NoiseTerm term : kNoiseTerms) {
+    const std::string_view name = term_name(term);
+    if (note.substr(0, name.size()) == name && note.size() > name.size() &&
+        note[name.size()] == ' ')
+      return term;
+  }
+  return std::nullopt;
 }
 
 }  // namespace imunoise::report

@@ -84,4 +84,8 @@ std::string unidentified_term_remedy(const models::AxisModel& axis, NoiseTerm te
 std::optional<double> duration_to_show_term(const models::AxisModel& axis, NoiseTerm term,
                                             double duration_s);
 
+/// The term a fit-note part names first ("random_walk dropped: …"), nullopt for a
+/// Gauss–Markov or sinusoid column or any other text.
+std::optional<NoiseTerm> leading_term(std::string_view note);
+
 }  // namespace imunoise::report

@@ -56,17 +56,6 @@ bool is_term_note(const ExplainedFinding& f) {
   return f.kind == "term_zero" || f.kind == "term_dropped";
 }
 
-/// The term a fit note names first, as in finding_remedies.cpp.
-std::optional<NoiseTerm> note_term(std::string_view note) {
-  for (NoiseTerm term : kNoiseTerms) {
-    const std::string_view name = term_name(term);
-    if (note.substr(0, name.size()) == name && note.size() > name.size() &&
-        note[name.size()] == ' ')
-      return term;
-  }
-  return std::nullopt;
-}
-
 /// TEXT in lines of at most WIDTH bytes: the first after INDENT, the others after NEXT_INDENT
 /// (default: INDENT).
 void wrap(std::ostringstream& out, const std::string& text, std::string_view indent,
@@ -150,7 +139,7 @@ std::vector<ExplainedFinding> verdict_findings(const models::NoiseModel& model,
   std::map<std::pair<int, int>, std::pair<std::size_t, double>> term_groups;
   for (const ExplainedFinding& f : all) {
     const models::AxisModel* axis = model.find_axis(f.where);
-    const std::optional<NoiseTerm> term = note_term(f.text);
+    const std::optional<NoiseTerm> term = leading_term(f.text);
     if (is_term_note(f) && axis && term) {
       const auto key = std::make_pair(static_cast<int>(axis->kind), static_cast<int>(*term));
       const double needed = duration_to_show_term(*axis, *term, model.duration_s).value_or(0.0);
