@@ -7,6 +7,9 @@
 /// of length T_a (leveling + gyro-bias removal, theory.md §7.3, §7.6).
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <string_view>
 #include <vector>
 
 #include "common/units.h"
@@ -14,12 +17,33 @@
 
 namespace imunoise::ins {
 
+/// The sources of the drift budget (DriftPrediction::horizontal_variance_budget_m2).
+enum class DriftBudgetTerm {
+  white_noise,       ///< N of gyro and accel, during navigation (process noise)
+  bias_instability,  ///< B / GM terms (bias_gm, gm_terms), during navigation (process noise)
+  random_walk,       ///< K, during navigation (process noise)
+  ramp,              ///< R: the ramp slope, whole (its alignment residual included)
+  alignment,         ///< P₀ left by the alignment (window means of N, K, GM; GM start values;
+                     ///< without alignment: the model's P₀ except the ramp slope)
+  heading,           ///< the initial heading σ (and its Earth-rate bias-removal coupling)
+};
+inline constexpr std::size_t kDriftBudgetTerms = 6;
+/// Variance per DriftBudgetTerm, in enum order [m²].
+using DriftBudgetRow = std::array<double, kDriftBudgetTerms>;
+/// Snake-case name of a budget term ("white_noise", …, "heading").
+constexpr std::string_view name_of(DriftBudgetTerm term) {
+  constexpr std::array<std::string_view, kDriftBudgetTerms> names{
+      "white_noise", "bias_instability", "random_walk", "ramp", "alignment", "heading"};
+  return names[static_cast<std::size_t>(term)];
+}
+
 struct DriftPredictionOptions {
   double latitude_rad = 45.0 * units::kDeg;  ///< L of the stationary nominal [rad]
   double height_m = 0.0;                     ///< h above the ellipsoid [m]
   double heading_rad = 0.0;                  ///< ψ of the level IMU, from north [rad]
-  /// Which bias terms act (ins::BiasModel): both = RW (K, turn-on σ) and GM (B) together;
-  /// random_walk drops the GM term, gauss_markov drops K and the turn-on σ.
+  /// Which bias terms act (ins::BiasModel): both = RW (K, turn-on σ, ramp) and GM (B, GM
+  /// terms) together; random_walk drops every GM term, gauss_markov drops K, the turn-on σ and
+  /// the ramp.
   BiasModel bias = BiasModel::both;
   /// false: Ω_ie = 0 in F (no Earth-rate, Coriolis or Foucault coupling), the Schuler-only
   /// simplification of theory.md §7.5/§8.4 (ErrorStateOptions::earth_rate).
@@ -36,6 +60,8 @@ struct DriftPredictionOptions {
   /// σ of the initial heading error δψ_D [rad], ≥ 0 (a given heading's uncertainty or a
   /// gyrocompass σ), taken independent of everything else.
   double heading_sigma_rad = 0.0;
+  /// true: also fill DriftPrediction::horizontal_variance_budget_m2 (6 more propagations).
+  bool budget = false;
 };
 
 /// 1σ predictions at each output time (all vectors as long as time_s).
@@ -52,6 +78,10 @@ struct DriftPrediction {
   /// @{
   std::vector<double> roll_sigma_rad, pitch_sigma_rad, heading_sigma_rad;
   /// @}
+  /// With DriftPredictionOptions::budget: σ_N² + σ_E² split by source (DriftBudgetTerm), one
+  /// row per time; the sources are independent, so each row sums to horizontal_drms_m² (to
+  /// rounding). Empty otherwise.
+  std::vector<DriftBudgetRow> horizontal_variance_budget_m2;
 };
 
 /// Covariance propagation of the stationary INS error state for NOISE under OPTIONS.
@@ -62,6 +92,11 @@ struct DriftPrediction {
 /// dropped terms instead of changing the layout, so an RW state (F = 0) is always there to
 /// hold the constant parts of P₀. Scale factors are not modelled (at rest they act only
 /// through s_a on the held vertical and s_g times Earth rate, theory.md §6.3).
+///
+/// Every GM term (bias_gm and gm_terms) is its own state, each ramp R a slope state (P₀ = R²)
+/// integrated by the RW bias state; the alignment formulas below apply per GM term (the terms
+/// are independent, so their contributions add) and the ramp leaves its window mean minus end
+/// value, ∓R·T_a/2 (see aligned_initial_covariance in the .cpp).
 ///
 /// P₀ with alignment (T_a > 0), per theory.md §7.6; every term is exact for the linear model:
 /// - Leveling zeroes the mean horizontal specific force, so the tilt cancels the window mean
@@ -84,7 +119,13 @@ struct DriftPrediction {
 /// - Heading: heading_sigma_rad², independent. Velocity, position: 0.
 ///
 /// P₀ without alignment: the model's initial variance (turn-on σ² on the RW states, GM σ²
-/// stationary) plus heading_sigma_rad² on δψ_D; navigation errors 0 (theory.md §8.4).
+/// stationary, R² on ramp slopes) plus heading_sigma_rad² on δψ_D; navigation errors 0
+/// (theory.md §8.4).
+///
+/// Budget (options.budget): each DriftBudgetTerm propagated alone (linear system, independent
+/// sources); the correlated (window mean, end value) pair of a GM term, and the Earth-rate
+/// coupling of an attitude error into the gyro-bias residual, stay inside the group of their
+/// source, so no cross-term is left to assign and the rows sum to the variance.
 ///
 /// @throws InputError for a bad nominal (as stationary_nominal()), bad noise (as
 ///   ins_error_state_model()), step_s not finite and > 0, times not finite, > 0, sorted and

@@ -132,6 +132,18 @@ void check_axis(const SensorAxisNoise& axis, const std::string& where) {
                  "ins_error_state_model: " + where +
                      ".bias_gm.tau_c_s must be finite and > 0 s when sigma > 0 (got " +
                      std::to_string(axis.bias_gm.tau_c_s) + ")");
+  check_term(axis.ramp, "ramp");
+  for (std::size_t j = 0; j < axis.gm_terms.size(); ++j) {
+    const GaussMarkov& gm = axis.gm_terms[j];
+    const std::string field = where + ".gm_terms[" + std::to_string(j) + "]";
+    IMUNOISE_CHECK(std::isfinite(gm.sigma) && gm.sigma >= 0.0, InputError,
+                   "ins_error_state_model: " + field + ".sigma must be finite and >= 0 (got " +
+                       std::to_string(gm.sigma) + ")");
+    IMUNOISE_CHECK(gm.sigma == 0.0 || (std::isfinite(gm.tau_c_s) && gm.tau_c_s > 0.0), InputError,
+                   "ins_error_state_model: " + field +
+                       ".tau_c_s must be finite and > 0 s when sigma > 0 (got " +
+                       std::to_string(gm.tau_c_s) + ")");
+  }
   IMUNOISE_CHECK(axis.scale_factor_tau_c_s > 0.0, InputError,
                  "ins_error_state_model: " + where +
                      ".scale_factor_tau_c_s must be > 0 s (infinity = random constant; got " +
@@ -206,6 +218,31 @@ ErrorStateLayout error_state_layout(const ErrorStateOptions& options) {
   return layout;
 }
 
+ErrorStateLayout error_state_layout(const ErrorStateOptions& options, const InsSensorNoise& noise) {
+  ErrorStateLayout layout = error_state_layout(options);
+  const auto add = [&](AxisState::Kind kind, bool gyro, int axis, int term) {
+    AxisState x;
+    x.kind = kind;
+    x.gyro = gyro;
+    x.axis = axis;
+    x.term = term;
+    x.state = layout.states++;
+    x.noise = layout.noises++;
+    layout.axis_states.push_back(x);
+  };
+  for (const bool gyro : {true, false}) {
+    const auto& axes = gyro ? noise.gyro : noise.accel;
+    for (int i = 0; i < 3; ++i) {
+      for (std::size_t j = 0; j < axes[i].gm_terms.size(); ++j)
+        if (axes[i].gm_terms[j].sigma > 0.0)
+          add(AxisState::Kind::gm_term, gyro, i, static_cast<int>(j));
+      if (axes[i].ramp > 0.0 && options.bias != BiasModel::gauss_markov)
+        add(AxisState::Kind::ramp_slope, gyro, i, 0);
+    }
+  }
+  return layout;
+}
+
 models::ContinuousStateModel ins_error_state_model(const NominalState& nominal,
                                                    const InsSensorNoise& noise,
                                                    const ErrorStateOptions& options) {
@@ -214,7 +251,7 @@ models::ContinuousStateModel ins_error_state_model(const NominalState& nominal,
     check_axis(noise.gyro[i], std::string("gyro[") + kXyz[i] + "]");
     check_axis(noise.accel[i], std::string("accel[") + kXyz[i] + "]");
   }
-  const ErrorStateLayout layout = error_state_layout(options);
+  const ErrorStateLayout layout = error_state_layout(options, noise);
   const int n = layout.states, p = layout.noises;
   const Matrix3d& C = nominal.C_bn;
 
@@ -298,6 +335,35 @@ models::ContinuousStateModel ins_error_state_model(const NominalState& nominal,
     add_sensor_block(*layout.gyro_scale, *layout.gyro_scale_noise, a,
                      C * nominal.w_ib_b_rad_per_s.asDiagonal(), "gyro_scale", "", "_per_sqrt_s",
                      [&](int i) { return scale_of(noise.gyro[i]); });
+  }
+
+  // Further GM terms and ramp slopes, one scalar state each (theory.md §4.4, §6.1).
+  for (const AxisState& x : layout.axis_states) {
+    const SensorAxisNoise& axis = x.gyro ? noise.gyro[x.axis] : noise.accel[x.axis];
+    const int nav_row = x.gyro ? a : u;
+    const std::string sensor = x.gyro ? "gyro" : "accel";
+    const std::string unit = x.gyro ? "_rad_per_s" : "_m_per_s2";
+    model.G(x.state, x.noise) = 1.0;
+    if (x.kind == AxisState::Kind::gm_term) {
+      const GaussMarkov& gm = axis.gm_terms[static_cast<std::size_t>(x.term)];
+      const ScalarState s = gauss_markov(gm.sigma, gm.tau_c_s);
+      model.F.block<3, 1>(nav_row, x.state) = C.col(x.axis);
+      model.F(x.state, x.state) = s.f;
+      model.Qc(x.noise, x.noise) = s.qc;
+      model.initial_variance(x.state) = s.p0;
+      const std::string name =
+          sensor + "_bias_gm" + std::to_string(x.term + 1) + "_" + kXyz[x.axis];
+      model.state_names[x.state] = name + unit;
+      model.noise_names[x.noise] = name + "_driving" + unit + "_per_sqrt_s";
+    } else {
+      // ḃ_RW = K w + s: the slope feeds the RW bias state of its axis; no driving noise.
+      const int bias_state = (x.gyro ? Layout::kGyroBias : Layout::kAccelBias) + x.axis;
+      model.F(bias_state, x.state) = 1.0;
+      model.initial_variance(x.state) = axis.ramp * axis.ramp;
+      const std::string name = sensor + "_ramp_slope_" + kXyz[x.axis];
+      model.state_names[x.state] = name + unit + "_per_s";
+      model.noise_names[x.noise] = name + "_driving_none";
+    }
   }
 
   if (options.height_hold) {

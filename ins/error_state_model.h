@@ -18,6 +18,7 @@
 #include <array>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "common/noise_coefficients.h"
 #include "models/state_space.h"
@@ -50,6 +51,15 @@ struct SensorAxisNoise {
   double scale_factor_sigma = 0.0;  ///< σ_s of the scale-factor error [-] (ratio, not ppm)
   /// Correlation time T_s of the scale factor [s] > 0; ∞ = random constant.
   double scale_factor_tau_c_s = std::numeric_limits<double>::infinity();
+  /// Further first-order GM bias terms (B as a sum of GMs, fitted GM terms), each its own
+  /// state beside bias_gm: F = −1/T_c, Q_c = 2σ²/T_c, P₀ = σ² (theory.md §4.4, §6.1). Terms
+  /// with σ = 0 get no state.
+  std::vector<GaussMarkov> gm_terms{};
+  /// R, rate ramp [rad/s² | m/s³] ≥ 0: an unknown constant slope s (P₀ = R², the AVAR R²τ²/2
+  /// of theory.md §4.1 read as a slope of either sign with E s² = R²) integrated by the RW bias
+  /// state (ḃ_RW = K w + s). 0 = no state. Not carried with BiasModel::gauss_markov (no RW
+  /// state to integrate it).
+  double ramp = 0.0;
 };
 
 /// x, y, z axes (body FRD) of the gyro and the accelerometer.
@@ -80,8 +90,19 @@ struct ErrorStateOptions {
   bool earth_rate = true;
 };
 
+/// One per-axis state of SensorAxisNoise::gm_terms or ::ramp (ErrorStateLayout::axis_states).
+struct AxisState {
+  enum class Kind { gm_term, ramp_slope } kind = Kind::gm_term;
+  bool gyro = true;  ///< gyro (true) or accelerometer axis
+  int axis = 0;      ///< body x, y, z = 0, 1, 2
+  int term = 0;      ///< index in gm_terms (gm_term)
+  int state = 0;     ///< offset in the state vector
+  int noise = 0;     ///< offset of its driving noise (zero intensity for a ramp slope)
+};
+
 /// Where each block sits in the state and noise vectors of ins_error_state_model().
-/// Sizes: random_walk or gauss_markov 15, both 21; scale factors add 6 (21 or 27).
+/// Sizes: random_walk or gauss_markov 15, both 21; scale factors add 6 (21 or 27); then one
+/// state per GM term and per ramp of the noise (axis_states), gyro x y z then accel x y z.
 struct ErrorStateLayout {
   /// @name State offsets, 3 states each, the same for every option (theory.md §6.3)
   /// @{
@@ -109,10 +130,16 @@ struct ErrorStateLayout {
   std::optional<int> gyro_scale_noise;     ///< drives gyro_scale: 12 or 18
   std::optional<int> accel_scale_noise;    ///< drives accel_scale: 15 or 21
   int noises = 12;                         ///< always states − 3
+  /// States of gm_terms and ramps, after every block above (empty without such terms).
+  std::vector<AxisState> axis_states;
 };
 
-/// The layout ins_error_state_model() produces for OPTIONS (height_hold does not change it).
+/// The layout ins_error_state_model() produces for OPTIONS and a noise without gm_terms and
+/// ramps (height_hold does not change it).
 ErrorStateLayout error_state_layout(const ErrorStateOptions& options);
+/// The layout for OPTIONS and NOISE: the blocks above plus NOISE's gm_terms (σ > 0) and ramps
+/// (R > 0, not with BiasModel::gauss_markov) as axis_states.
+ErrorStateLayout error_state_layout(const ErrorStateOptions& options, const InsSensorNoise& noise);
 
 /// The continuous error-state model ẋ = F x + G w, E[w wᵀ] = Q_c δ(t − s) at NOMINAL.
 ///
@@ -128,9 +155,11 @@ ErrorStateLayout error_state_layout(const ErrorStateOptions& options);
 /// The vertical δr_D → δv_D term is ∂g_D/∂h of gravity_ned() (≈ 2g/R, unstable) unless
 /// options.height_hold. options.earth_rate = false drops every Ω_ie term.
 ///
-/// Sensor blocks: δψ̇ += C_bn(b_g [+ b_g,gm] + diag(ω_ib^b) s_g + n_g), δv̇ += C_bn(b_a
-/// [+ b_a,gm] + diag(f_ib^b) s_a + n_a); RW biases F = 0; GM biases F = −1/T_c; scale factors
-/// F = 0 (T_s = ∞) or −1/T_s. A GM term with σ = 0 leaves its state inert (F = 0, Q_c = 0).
+/// Sensor blocks: δψ̇ += C_bn(b_g [+ b_g,gm] + Σ b_g,j + diag(ω_ib^b) s_g + n_g), δv̇ +=
+/// C_bn(b_a [+ b_a,gm] + Σ b_a,j + diag(f_ib^b) s_a + n_a); RW biases F = 0 (plus the ramp
+/// slope, ḃ_RW += s); GM biases F = −1/T_c; scale factors F = 0 (T_s = ∞) or −1/T_s. A GM
+/// term with σ = 0 leaves its state inert (F = 0, Q_c = 0). The gm_terms b_j and ramp slopes
+/// s are the axis_states of the layout.
 ///
 /// w = [n_g, n_a, w_bg, w_ba, (w_bg,gm, w_ba,gm), (w_sg, w_sa)] (gyro before accel in each
 /// pair; theory.md §6.3 lists w_ba first — the order here is fixed by ErrorStateLayout), G

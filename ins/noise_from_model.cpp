@@ -12,11 +12,25 @@
 namespace imunoise::ins {
 namespace {
 
-SensorAxisNoise axis_noise(const models::SensorAxisParameters& p) {
+bool has_single_gm_fallback(const models::AxisModel& axis) {
+  return axis.terms[NoiseTerm::bias_instability].value > 0.0 && axis.multi_gm.empty();
+}
+
+SensorAxisNoise axis_noise(const models::SensorAxisParameters& p, const models::NoiseModel& model,
+                           bool model_terms) {
   SensorAxisNoise n;
   n.white_noise = p.white_noise;
   n.random_walk = p.random_walk;
   n.bias_gm = p.bias_gm;
+  if (!model_terms) return n;
+  const models::AxisModel* axis = model.find_axis(p.from);
+  if (axis == nullptr) return n;
+  // B as its multi-GM terms (or, without them, the single GM select_filter_parameters chose
+  // for B); every fitted GM term as its own state beside them (theory.md §4.4, §6.3).
+  if (!has_single_gm_fallback(*axis)) n.bias_gm = {};
+  n.gm_terms = axis->multi_gm;
+  for (const models::GaussMarkovEstimate& gm : axis->gauss_markov) n.gm_terms.push_back(gm.value);
+  n.ramp = axis->terms[NoiseTerm::ramp].value;
   return n;
 }
 
@@ -41,10 +55,17 @@ InsSensorNoise ins_sensor_noise(const models::NoiseModel& model, const InsNoiseO
   const models::FilterParameters params = models::select_filter_parameters(model, select);
   InsSensorNoise noise;
   for (int i = 0; i < 3; ++i) {
-    noise.gyro[i] = axis_noise(params.gyro->axes[i]);
-    noise.accel[i] = axis_noise(params.accel->axes[i]);
+    noise.gyro[i] = axis_noise(params.gyro->axes[i], model, options.model_terms_as_states);
+    noise.accel[i] = axis_noise(params.accel->axes[i], model, options.model_terms_as_states);
   }
   return noise;
+}
+
+std::vector<std::string> single_gm_fallback_axes(const models::NoiseModel& model) {
+  std::vector<std::string> out;
+  for (const models::AxisModel& axis : model.axes)
+    if (has_single_gm_fallback(axis)) out.push_back(axis.name);
+  return out;
 }
 
 }  // namespace imunoise::ins

@@ -4,6 +4,9 @@
 /// instability B as one first-order Gauss–Markov term (theory.md §4.4) for each body axis.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "ins/error_state_model.h"
 #include "models/bias_instability_gm.h"
 #include "models/filter_parameters.h"
@@ -20,6 +23,13 @@ struct InsNoiseOptions {
   models::GmConvention gm_convention = models::GmConvention::peak_match;
   /// The names select_filter_parameters()'s messages give the settings (the CLI: its flags).
   models::FilterSettingNames setting_names;
+  /// true: every stochastic term of the model as its own state (the drift prediction):
+  /// B as the axis' multi_gm terms (AxisModel::multi_gm, theory.md §4.4 "preferred") in
+  /// gm_terms, falling back to the single GM of gm_convention in bias_gm only for an axis
+  /// with B but no multi_gm (single_gm_fallback_axes() names them); every fitted GM term in
+  /// gm_terms; R in ramp. Point values (the conservative flag still applies to N and K; GM
+  /// terms and R carry no interval to take the upper end of).
+  bool model_terms_as_states = false;
 };
 
 /// Per body axis x, y, z of the gyro and the accelerometer: white_noise = N,
@@ -35,5 +45,9 @@ struct InsNoiseOptions {
 ///   three gyro and three accel axes; the model has G and A"), when its sample_rate_hz is
 ///   not > 0, or as select_filter_parameters() (e.g. B without τ of the ADEV minimum).
 InsSensorNoise ins_sensor_noise(const models::NoiseModel& model, const InsNoiseOptions& options);
+
+/// The axes of MODEL whose B is identified but that hold no multi_gm: with
+/// InsNoiseOptions::model_terms_as_states they carry B as one GM (the fallback), in model order.
+std::vector<std::string> single_gm_fallback_axes(const models::NoiseModel& model);
 
 }  // namespace imunoise::ins

@@ -303,35 +303,62 @@ std::vector<DriftSegment> read_drift_segments_csv(const std::string& path) {
   return out;
 }
 
+// ------------------------------------------------------------------------- drift_budget.csv
+namespace {
+
+std::string budget_column(std::size_t term) {
+  return std::string(ins::name_of(static_cast<ins::DriftBudgetTerm>(term))) + "_variance_m2";
+}
+constexpr const char* kBudgetTotal = "predicted_horizontal_variance_m2";
+
+}  // namespace
+
+std::string format_drift_budget_csv(const pipeline::DriftBudget& b) {
+  const std::size_t n = b.time_s.size();
+  IMUNOISE_EXPECT(b.variance_m2.size() == n && b.predicted_variance_m2.size() == n,
+                  "drift budget: its vectors differ in length");
+  std::ostringstream out;
+  out << "time_s";
+  for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) out << ',' << budget_column(g);
+  out << ',' << kBudgetTotal << '\n';
+  for (std::size_t i = 0; i < n; ++i) {
+    out << shortest_number_text(b.time_s[i]);
+    for (const double v : b.variance_m2[i]) out << ',' << shortest_number_text(v);
+    out << ',' << shortest_number_text(b.predicted_variance_m2[i]) << '\n';
+  }
+  return out.str();
+}
+
+void write_drift_budget_csv(const std::string& path, const pipeline::DriftBudget& budget) {
+  write_file_atomically(path, format_drift_budget_csv(budget));
+}
+
+pipeline::DriftBudget read_drift_budget_csv(const std::string& path) {
+  const NumericTable t = read_numeric_table(path);
+  const std::string what = "a drift_budget.csv";
+  std::vector<std::size_t> c{require_column(t, path, "time_s", what)};
+  for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g)
+    c.push_back(require_column(t, path, budget_column(g), what));
+  c.push_back(require_column(t, path, kBudgetTotal, what));
+  pipeline::DriftBudget b;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    for (const std::size_t column : c) require_cells(t, path, r, {column});
+    const auto& row = t.rows[r];
+    b.time_s.push_back(*row[c[0]]);
+    ins::DriftBudgetRow v{};
+    for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) v[g] = *row[c[1 + g]];
+    b.variance_m2.push_back(v);
+    b.predicted_variance_m2.push_back(*row[c.back()]);
+  }
+  return b;
+}
+
 // ----------------------------------------------------------------------- drift_summary.json
-std::string format_drift_summary_json(const pipeline::DriftSummary& s) {
-  const pipeline::DriftProtocol& p = s.protocol;
-  const pipeline::MotionCheck& m = s.motion;
-  json j;
-  j["recording"] = s.recording;
-  j["model"] = s.model;
-  j["location"] = {{"latitude_deg", s.location.latitude_deg},
-                   {"longitude_deg", s.location.longitude_deg},
-                   {"height_m", s.location.height_m},
-                   {"given", s.location.given}};
-  j["protocol"] = {{"align_s", p.align_s},
-                   {"navigation_s", p.navigation_s},
-                   {"warmup_s", p.warmup_s},
-                   {"segments", p.segments},
-                   {"vertical_channel", p.vertical_channel},
-                   {"gyro_bias", p.gyro_bias},
-                   {"heading", p.heading},
-                   {"bias_instability_as_gm", p.bias_instability_as_gm}};
-  j["motion_check"] = {{"stationary", m.stationary},
-                       {"reason", m.reason},
-                       {"forced", s.forced},
-                       {"max_gyro_std_ratio", m.max_gyro_std_ratio},
-                       {"max_accel_std_ratio", m.max_accel_std_ratio},
-                       {"max_force_deviation_m_per_s2", m.max_force_deviation_m_per_s2},
-                       {"max_tilt_change_deg", m.max_tilt_change_rad / units::kDeg},
-                       {"max_rotation_deg_per_s", m.max_rotation_rad_per_s / units::kDeg}};
+namespace {
+
+json consistency_json(const std::vector<pipeline::DriftConsistency>& consistency) {
   json stats = json::array();
-  for (const pipeline::DriftConsistency& c : s.consistency) {
+  for (const pipeline::DriftConsistency& c : consistency) {
     json e = {{"time_s", c.time_s},
               {"predicted_north_sigma_m", c.predicted_north_sigma_m},
               {"predicted_east_sigma_m", c.predicted_east_sigma_m},
@@ -353,7 +380,44 @@ std::string format_drift_summary_json(const pipeline::DriftSummary& s) {
     }
     stats.push_back(e);
   }
-  j["consistency"] = stats;
+  return stats;
+}
+
+}  // namespace
+
+std::string format_drift_summary_json(const pipeline::DriftSummary& s) {
+  const pipeline::DriftProtocol& p = s.protocol;
+  const pipeline::MotionCheck& m = s.motion;
+  json j;
+  j["recording"] = s.recording;
+  j["model"] = s.model;
+  j["location"] = {{"latitude_deg", s.location.latitude_deg},
+                   {"longitude_deg", s.location.longitude_deg},
+                   {"height_m", s.location.height_m},
+                   {"given", s.location.given}};
+  j["protocol"] = {{"align_s", p.align_s},
+                   {"navigation_s", p.navigation_s},
+                   {"warmup_s", p.warmup_s},
+                   {"segments", p.segments},
+                   {"vertical_channel", p.vertical_channel},
+                   {"gyro_bias", p.gyro_bias},
+                   {"heading", p.heading},
+                   {"bias_instability_as_gm", p.bias_instability_as_gm},
+                   {"bias_states", p.bias_states}};
+  j["motion_check"] = {{"stationary", m.stationary},
+                       {"reason", m.reason},
+                       {"forced", s.forced},
+                       {"max_gyro_std_ratio", m.max_gyro_std_ratio},
+                       {"max_accel_std_ratio", m.max_accel_std_ratio},
+                       {"max_force_deviation_m_per_s2", m.max_force_deviation_m_per_s2},
+                       {"max_tilt_change_deg", m.max_tilt_change_rad / units::kDeg},
+                       {"max_rotation_deg_per_s", m.max_rotation_rad_per_s / units::kDeg}};
+  j["consistency"] = consistency_json(s.consistency);
+  if (s.holdout)
+    j["holdout"] = {{"fitted_on", s.holdout->fitted_on},
+                    {"judged_on", s.holdout->judged_on},
+                    {"segments", s.holdout->segments},
+                    {"consistency", consistency_json(s.holdout->consistency)}};
   if (s.monte_carlo)
     j["monte_carlo"] = {{"runs", s.monte_carlo->runs}, {"seed", s.monte_carlo->seed}};
   return j.dump(2) + "\n";
@@ -362,6 +426,42 @@ std::string format_drift_summary_json(const pipeline::DriftSummary& s) {
 void write_drift_summary_json(const std::string& path, const pipeline::DriftSummary& summary) {
   write_file_atomically(path, format_drift_summary_json(summary));
 }
+
+namespace {
+
+std::vector<pipeline::DriftConsistency> read_consistency(const JsonReader& parent, const char* key,
+                                                         const std::string& path) {
+  std::vector<pipeline::DriftConsistency> out;
+  const json& consistency = parent.array(key);
+  for (std::size_t i = 0; i < consistency.size(); ++i) {
+    const JsonReader c(consistency[i], path, parent.name(key) + "[" + std::to_string(i) + "]");
+    pipeline::DriftConsistency d;
+    d.time_s = c.number("time_s");
+    d.predicted_north_sigma_m = c.number("predicted_north_sigma_m");
+    d.predicted_east_sigma_m = c.number("predicted_east_sigma_m");
+    d.predicted_drms_m = c.number("predicted_horizontal_drms_m");
+    d.actual_rms_m = c.number("actual_rms_horizontal_error_m");
+    d.mean_nees = c.number("mean_nees");
+    const auto band = c.numbers<2>("mean_nees_band_95");
+    d.nees_band_low = band[0];
+    d.nees_band_high = band[1];
+    d.nees_inside = c.boolean("nees_inside_band");
+    d.coverage = c.numbers<3>("coverage_1_2_3_sigma");
+    d.expected_coverage = c.numbers<3>("expected_coverage_1_2_3_sigma");
+    d.rms_ratio = c.number("rms_ratio");
+    const auto ci = c.numbers<2>("rms_ratio_ci_95");
+    d.rms_ratio_ci_low = ci[0];
+    d.rms_ratio_ci_high = ci[1];
+    if (c.has("monte_carlo_radial_rms_m") || c.has("monte_carlo_radial_p95_m")) {
+      d.monte_carlo_radial_rms_m = c.number("monte_carlo_radial_rms_m");
+      d.monte_carlo_radial_p95_m = c.number("monte_carlo_radial_p95_m");
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+}  // namespace
 
 pipeline::DriftSummary read_drift_summary_json(const std::string& path) {
   json j;
@@ -392,6 +492,7 @@ pipeline::DriftSummary read_drift_summary_json(const std::string& path) {
   s.protocol.gyro_bias = protocol.text("gyro_bias");
   s.protocol.heading = protocol.text("heading");
   s.protocol.bias_instability_as_gm = protocol.text("bias_instability_as_gm");
+  if (protocol.has("bias_states")) s.protocol.bias_states = protocol.text("bias_states");
   const JsonReader motion = top.object("motion_check");
   s.motion.stationary = motion.boolean("stationary");
   s.motion.reason = motion.text("reason");
@@ -401,31 +502,15 @@ pipeline::DriftSummary read_drift_summary_json(const std::string& path) {
   s.motion.max_force_deviation_m_per_s2 = motion.number("max_force_deviation_m_per_s2");
   s.motion.max_tilt_change_rad = motion.number("max_tilt_change_deg") * units::kDeg;
   s.motion.max_rotation_rad_per_s = motion.number("max_rotation_deg_per_s") * units::kDeg;
-  const json& consistency = top.array("consistency");
-  for (std::size_t i = 0; i < consistency.size(); ++i) {
-    const JsonReader c(consistency[i], path, "consistency[" + std::to_string(i) + "]");
-    pipeline::DriftConsistency d;
-    d.time_s = c.number("time_s");
-    d.predicted_north_sigma_m = c.number("predicted_north_sigma_m");
-    d.predicted_east_sigma_m = c.number("predicted_east_sigma_m");
-    d.predicted_drms_m = c.number("predicted_horizontal_drms_m");
-    d.actual_rms_m = c.number("actual_rms_horizontal_error_m");
-    d.mean_nees = c.number("mean_nees");
-    const auto band = c.numbers<2>("mean_nees_band_95");
-    d.nees_band_low = band[0];
-    d.nees_band_high = band[1];
-    d.nees_inside = c.boolean("nees_inside_band");
-    d.coverage = c.numbers<3>("coverage_1_2_3_sigma");
-    d.expected_coverage = c.numbers<3>("expected_coverage_1_2_3_sigma");
-    d.rms_ratio = c.number("rms_ratio");
-    const auto ci = c.numbers<2>("rms_ratio_ci_95");
-    d.rms_ratio_ci_low = ci[0];
-    d.rms_ratio_ci_high = ci[1];
-    if (c.has("monte_carlo_radial_rms_m") || c.has("monte_carlo_radial_p95_m")) {
-      d.monte_carlo_radial_rms_m = c.number("monte_carlo_radial_rms_m");
-      d.monte_carlo_radial_p95_m = c.number("monte_carlo_radial_p95_m");
-    }
-    s.consistency.push_back(d);
+  s.consistency = read_consistency(top, "consistency", path);
+  if (top.has("holdout")) {
+    const JsonReader h = top.object("holdout");
+    pipeline::DriftHoldout holdout;
+    holdout.fitted_on = h.text("fitted_on");
+    holdout.judged_on = h.text("judged_on");
+    holdout.segments = h.count("segments");
+    holdout.consistency = read_consistency(h, "consistency", path);
+    s.holdout = std::move(holdout);
   }
   if (top.has("monte_carlo")) {
     const JsonReader mc = top.object("monte_carlo");

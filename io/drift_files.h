@@ -54,17 +54,32 @@ void write_drift_segments_csv(const std::string& path,
 std::vector<pipeline::DriftSegment> read_drift_segments_csv(const std::string& path);
 /// @}
 
+/// @name drift_budget.csv
+/// Columns `time_s`, then per source (ins::DriftBudgetTerm order) `<name>_variance_m2`
+/// (white_noise, bias_instability, random_walk, ramp, alignment, heading), then
+/// `predicted_horizontal_variance_m2`; one row per report time.
+/// @{
+
+/// The text of drift_budget.csv. @throws ContractViolation when the vectors differ in length.
+std::string format_drift_budget_csv(const pipeline::DriftBudget& budget);
+void write_drift_budget_csv(const std::string& path, const pipeline::DriftBudget& budget);
+/// Reads PATH back; every column required, every cell filled.
+pipeline::DriftBudget read_drift_budget_csv(const std::string& path);
+/// @}
+
 /// @name drift_summary.json
 /// An object with "recording", "model", "location" {latitude_deg, longitude_deg, height_m,
 /// given}, "protocol" {align_s, navigation_s, warmup_s, segments, vertical_channel, gyro_bias,
-/// heading, bias_instability_as_gm}, "motion_check" {stationary, reason, forced,
-/// max_gyro_std_ratio, max_accel_std_ratio, max_force_deviation_m_per_s2, max_tilt_change_deg,
-/// max_rotation_deg_per_s}, "consistency" (one object per report time: time_s,
+/// heading, bias_instability_as_gm, bias_states (optional when read)}, "motion_check" {stationary,
+/// reason, forced, max_gyro_std_ratio, max_accel_std_ratio, max_force_deviation_m_per_s2,
+/// max_tilt_change_deg, max_rotation_deg_per_s}, "consistency" (one object per report time: time_s,
 /// predicted_north_sigma_m, predicted_east_sigma_m, predicted_horizontal_drms_m,
 /// actual_rms_horizontal_error_m, mean_nees, mean_nees_band_95 [2], nees_inside_band,
 /// coverage_1_2_3_sigma [3], expected_coverage_1_2_3_sigma [3], rms_ratio,
 /// rms_ratio_ci_95 [2], and with the Monte Carlo monte_carlo_radial_rms_m and
-/// monte_carlo_radial_p95_m) and, when it ran, "monte_carlo" {runs, seed}. A non-finite number
+/// monte_carlo_radial_p95_m), when it ran, "monte_carlo" {runs, seed}, and with the
+/// split-sample check "holdout" {fitted_on, judged_on, segments, consistency (as above,
+/// without the Monte Carlo keys)}. A non-finite number
 /// is written as null and read back as NaN.
 /// @{
 

@@ -25,7 +25,9 @@ struct SensorKeys {
   std::string_view sigma;                            ///< Gauss–Markov σ [rad/s | m/s²]
   std::string_view sigma_ci_low;
   std::string_view sigma_ci_high;
-  std::string_view amplitude;  ///< sinusoid amplitude [rad/s | m/s²]
+  std::string_view amplitude;         ///< sinusoid amplitude [rad/s | m/s²]
+  std::string_view amplitude_ci_low;  ///< its interval (optional in files before it)
+  std::string_view amplitude_ci_high;
 };
 
 inline constexpr SensorKeys kGyroKeys{
@@ -36,7 +38,9 @@ inline constexpr SensorKeys kGyroKeys{
     "sigma_rad_per_s",
     "sigma_ci_low_rad_per_s",
     "sigma_ci_high_rad_per_s",
-    "amplitude_rad_per_s"};
+    "amplitude_rad_per_s",
+    "amplitude_ci_low_rad_per_s",
+    "amplitude_ci_high_rad_per_s"};
 
 inline constexpr SensorKeys kAccelKeys{
     sensor_name(SensorKind::accel),
@@ -47,7 +51,9 @@ inline constexpr SensorKeys kAccelKeys{
     "sigma_m_per_s2",
     "sigma_ci_low_m_per_s2",
     "sigma_ci_high_m_per_s2",
-    "amplitude_m_per_s2"};
+    "amplitude_m_per_s2",
+    "amplitude_ci_low_m_per_s2",
+    "amplitude_ci_high_m_per_s2"};
 
 /// The keys of KIND's axes.
 inline const SensorKeys& keys_for(SensorKind kind) {

@@ -32,6 +32,7 @@ using models::BiasInstabilityGm;
 using models::Estimate;
 using models::GaussMarkovEstimate;
 using models::NoiseModel;
+using models::SinusoidEstimate;
 using namespace detail;  // the schema's key names (noise_model_yaml_internal.h)
 
 /// A scalar's text for a message: on one line, at most about 60 bytes.
@@ -300,12 +301,19 @@ class Reader {
     if (const YAML::Node* list = map.find(kSinusoids)) {
       read_list(*list, map.child(kSinusoids), [&](const YAML::Node& item, const auto& at) {
         const Map sine(*this, item, at);
-        sine.accept_only({keys.amplitude, kFrequency, kPhase});
-        Sinusoid s;
-        s.amplitude = number(sine.require(keys.amplitude), sine.child(keys.amplitude), Range::kAny);
-        s.frequency_hz =
+        sine.accept_only(
+            {keys.amplitude, kFrequency, kPhase, keys.amplitude_ci_low, keys.amplitude_ci_high});
+        SinusoidEstimate s;
+        s.value.amplitude =
+            number(sine.require(keys.amplitude), sine.child(keys.amplitude), Range::kAny);
+        s.value.frequency_hz =
             number(sine.require(kFrequency), sine.child(kFrequency), Range::kNonNegative);
-        s.phase_rad = sine.number_or(kPhase, 0.0, Range::kAny);
+        s.value.phase_rad = sine.number_or(kPhase, 0.0, Range::kAny);
+        // The interval keys came with automatic line detection; a model without them has an
+        // empty interval at the amplitude (as a Gauss-Markov term without the bootstrap).
+        s.amplitude_ci_low = sine.number_or(keys.amplitude_ci_low, s.value.amplitude, Range::kAny);
+        s.amplitude_ci_high =
+            sine.number_or(keys.amplitude_ci_high, s.value.amplitude, Range::kAny);
         axis.sinusoids.push_back(s);
       });
     }

@@ -24,6 +24,7 @@ using models::BiasInstabilityGm;
 using models::Estimate;
 using models::GaussMarkovEstimate;
 using models::NoiseModel;
+using models::SinusoidEstimate;
 using namespace detail;  // the schema's key names (noise_model_yaml_internal.h)
 
 std::string integer_text(std::int64_t value) {
@@ -146,11 +147,13 @@ class Writer {
     list(4, kGaussMarkov, items, "first-order Gauss-Markov terms: sigma, correlation time");
 
     items.clear();
-    for (const Sinusoid& s : axis.sinusoids) {
+    for (const SinusoidEstimate& s : axis.sinusoids) {
       items.push_back(FlowMap()
-                          .number(keys.amplitude, s.amplitude)
-                          .number(kFrequency, s.frequency_hz)
-                          .number(kPhase, s.phase_rad)
+                          .number(keys.amplitude, s.value.amplitude)
+                          .number(kFrequency, s.value.frequency_hz)
+                          .number(kPhase, s.value.phase_rad)
+                          .number(keys.amplitude_ci_low, s.amplitude_ci_low)
+                          .number(keys.amplitude_ci_high, s.amplitude_ci_high)
                           .text());
     }
     list(4, kSinusoids, items, "A sin(2 pi f t + phase)");

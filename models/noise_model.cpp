@@ -26,7 +26,7 @@ NoiseCoefficients AxisModel::coefficients() const {
   NoiseCoefficients c;
   for (NoiseTerm term : kNoiseTerms) coefficient(c, term) = terms[term].value;
   for (const GaussMarkovEstimate& gm : gauss_markov) c.gauss_markov.push_back(gm.value);
-  c.sinusoids = sinusoids;
+  for (const SinusoidEstimate& s : sinusoids) c.sinusoids.push_back(s.value);
   return c;
 }
 

@@ -37,6 +37,13 @@ struct GaussMarkovEstimate {
   double tau_c_ci_low_s = 0.0, tau_c_ci_high_s = 0.0;
 };
 
+/// A sinusoid (spectral line) with the interval on its amplitude.
+struct SinusoidEstimate {
+  Sinusoid value;
+  double amplitude_ci_low = 0.0;   ///< [rad/s | m/s²]; equal to the amplitude when no interval
+  double amplitude_ci_high = 0.0;  ///< [rad/s | m/s²]
+};
+
 /// One B → Gauss–Markov conversion (theory.md §4.4), named by its convention.
 struct BiasInstabilityGm {
   std::string convention;  ///< "min_adev_at_tau_min" (a), "peak_match" (b), "sigma_equals_b" (c)
@@ -55,7 +62,7 @@ struct AxisModel {
   SensorKind kind = SensorKind::gyro;  ///< gyro (rad/s) or accelerometer (m/s²)
   PerTerm<Estimate> terms;
   std::vector<GaussMarkovEstimate> gauss_markov;       ///< fitted GM terms (if any)
-  std::vector<Sinusoid> sinusoids;                     ///< fitted sinusoids (if any)
+  std::vector<SinusoidEstimate> sinusoids;             ///< fitted sinusoids (if any)
   std::vector<BiasInstabilityGm> bias_instability_gm;  ///< B as one GM, each convention
   std::vector<GaussMarkov> multi_gm;  ///< B as 2–4 GMs (theory.md §4.4 "preferred"); empty if B = 0
   double multi_gm_fraction_inside_ci = 0.0;  ///< fraction of fitted τ whose model ADEV with

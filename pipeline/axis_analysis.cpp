@@ -111,6 +111,56 @@ double model_adev_minimum_tau(const NoiseCoefficients& c, double tau_low, double
   return best_tau;
 }
 
+/// The spectral lines of the pieces (analysis/spectral_lines.h): the raw Welch spectrum at the
+/// automatic segment length (at most options.line_segment_length_max), the lines standing
+/// above its continuum plus the caller's candidate frequencies, fitted on the samples.
+struct AxisLines {
+  analysis::LineDetection detection;
+  analysis::LineFit fit;
+  std::size_t forced = 0;  ///< of fit.lines, the caller's candidates (the last ones)
+};
+
+AxisLines find_axis_lines(std::span<const std::span<const double>> pieces, double tau0_s,
+                          const AxisAnalysisOptions& options) {
+  AxisLines out;
+  const std::vector<double>& forced = options.fit.sinusoid_frequencies_hz;
+  if (!options.find_lines && forced.empty()) return out;
+  std::size_t longest = 0;
+  for (const auto& p : pieces) longest = std::max(longest, p.size());
+  if (longest < 256) return out;
+  analysis::WelchOptions welch = options.welch;
+  welch.segment_length =
+      std::min(analysis::automatic_segment_length(longest), options.line_segment_length_max);
+  std::vector<std::span<const double>> usable;
+  for (const auto& p : pieces) {
+    if (p.size() >= welch.segment_length) usable.push_back(p);
+  }
+  const analysis::Spectrum raw = analysis::pooled_welch_psd(usable, 1.0 / tau0_s, welch);
+  std::vector<double> frequencies, continuum;
+  if (options.find_lines) {
+    out.detection = analysis::detect_spectral_lines(raw, options.lines);
+    for (const analysis::LineCandidate& c : out.detection.candidates) {
+      frequencies.push_back(c.frequency_hz);
+      continuum.push_back(c.continuum_density);
+    }
+  }
+  for (double f : forced) {
+    // A candidate already found is not fitted twice.
+    const bool found = std::any_of(frequencies.begin(), frequencies.end(), [&](double g) {
+      return std::abs(g - f) <= 2.0 * raw.resolution_hz;
+    });
+    if (found) continue;
+    frequencies.push_back(f);
+    continuum.push_back(analysis::line_continuum_density(raw, f, options.lines));
+    ++out.forced;
+  }
+  std::vector<std::span<const double>> all(pieces.begin(), pieces.end());
+  std::erase_if(all, [](std::span<const double> p) { return p.size() < 8; });
+  out.fit = analysis::fit_spectral_lines(all, 1.0 / tau0_s, frequencies, continuum,
+                                         raw.resolution_hz, options.confidence);
+  return out;
+}
+
 }  // namespace
 
 int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard) {
@@ -153,6 +203,7 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
 }
 
 double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
+  constexpr double kLowPassStartFactor = 50.0;
   const auto& pts = oadev.points;
   if (pts.empty()) return 0.0;
   std::size_t first = 0;
@@ -165,9 +216,12 @@ double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
   if (first == 0) return pts.front().tau_s;
   // A low-pass filter with unit DC gain leaves the white-noise AVAR short by a fraction that
   // decays only like 1/m (the filter memory matters at the two block edges of each
-  // difference): a deficit of ~20 % at the first unbent point is still ~2 % ten times further
-  // out. Start the fit a decade above the bend.
-  return 10.0 * pts[first].tau_s;
+  // difference; docs/validation.md "Low-pass of white noise": AVAR = N²/τ − 3τ0²Σ|l|R(l)/(2τ²)
+  // beyond the memory): a deficit of ~20 % at the first unbent point is still ~2 % ten times
+  // further out, which left N −0.63 % under a 2nd-order Butterworth at f_s/4 (battery lowpass
+  // class) against ±0.2 % intervals. Start the fit 50 times above the bend: ~0.4 % there,
+  // less beyond, and N still has the decades up to the B/K corner.
+  return kLowPassStartFactor * pts[first].tau_s;
 }
 
 AxisAnalysis analyze_axis(const std::string& name, SensorKind kind, std::span<const double> rate,
@@ -191,13 +245,35 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   };
   progress("deviations", 0);
   AxisAnalysis out;
+  // 0. Spectral lines: found and fitted on the samples, removed before the deviations so that
+  // the AVAR fit sees the continuum only (a line's AVAR hump would otherwise be read as B, K
+  // or a ramp); the PSD below stays that of the record as given (psd.csv shows the lines; the
+  // cross-check skips the bins that hold them).
+  const AxisLines lines = find_axis_lines(pieces, tau0_s, options);
+  out.lines = lines.detection;
+  std::vector<std::vector<double>> cleaned;
+  std::vector<std::span<const double>> cleaned_spans;
+  std::span<const std::span<const double>> work = pieces;
+  if (!lines.fit.lines.empty()) {
+    std::size_t fitted = 0;
+    for (const auto& piece : pieces) {
+      if (piece.size() < 8) {
+        cleaned.emplace_back(piece.begin(), piece.end());
+      } else {
+        cleaned.push_back(
+            analysis::remove_spectral_lines(piece, fitted++, lines.fit, 1.0 / tau0_s));
+      }
+    }
+    for (const auto& c : cleaned) cleaned_spans.emplace_back(c);
+    work = cleaned_spans;
+  }
   // One phase record per piece, each from its own mean (theory.md §2 "Numerics"); the grid
   // is that of the longest piece, which bounds the largest m any piece can answer.
   std::vector<std::vector<double>> phases;
   std::vector<std::span<const double>> phase_spans;
   phases.reserve(pieces.size());
   std::int64_t n_phase = 0;
-  for (const auto& piece : pieces) {
+  for (const auto& piece : work) {
     phases.push_back(analysis::phase_from_rate(piece, tau0_s));
     phase_spans.emplace_back(phases.back());
     n_phase = std::max(n_phase, static_cast<std::int64_t>(phases.back().size()));
@@ -225,6 +301,8 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // 1 kHz has 0.7 GB of phase per channel).
   phase_spans.clear();
   std::vector<std::vector<double>>().swap(phases);
+  cleaned_spans.clear();
+  std::vector<std::vector<double>>().swap(cleaned);
   progress("fit", 2);
 
   // 2. The fit on OAVAR (σ² domain, theory.md §4.3).
@@ -232,6 +310,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // m, so a mis-identified noise type at large m cannot over-weight a point.
   std::vector<analysis::FitPoint> points = analysis::fit_points(out.oadev);
   analysis::FitOptions fit_options = options.fit;
+  fit_options.sinusoid_frequencies_hz.clear();  // fitted on the samples above
   if (fit_options.tau_min_s <= 0.0 && options.auto_low_pass) {
     fit_options.tau_min_s = low_pass_tau_min(out.oadev);
   }
@@ -265,7 +344,10 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   psd_options.bins_per_decade = options.psd_bins_per_decade;
   out.psd = analysis::pooled_multirate_psd(pieces, 1.0 / tau0_s, psd_options, &psd_pieces);
   out.psd_readoff = analysis::psd_readoff(out.psd);
-  out.psd_check = analysis::cross_check_psd(out.psd, out.fit.coefficients, tau0_s, 0.4 / tau0_s);
+  NoiseCoefficients with_lines = out.fit.coefficients;
+  for (const analysis::FittedLine& line : lines.fit.lines)
+    with_lines.sinusoids.push_back(line.value);
+  out.psd_check = analysis::cross_check_psd(out.psd, with_lines, tau0_s, 0.4 / tau0_s);
   progress(replicates > 0 ? "bootstrap" : "intervals", 4);
 
   // 4. Intervals.
@@ -411,7 +493,21 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
                       "Gauss-Markov intervals need the bootstrap (" + options.bootstrap_setting +
                       ")";
   }
-  for (const Sinusoid& s : out.fit.coefficients.sinusoids) model.sinusoids.push_back(s);
+  for (const analysis::FittedLine& line : lines.fit.lines) {
+    model.sinusoids.push_back({line.value, line.amplitude_ci_low, line.amplitude_ci_high});
+  }
+  if (!lines.fit.lines.empty()) {
+    const std::size_t found = lines.fit.lines.size() - lines.forced;
+    std::string note = std::to_string(found) + " spectral line" + (found == 1 ? "" : "s") +
+                       " found (false-alarm probability " +
+                       number_text(100.0 * options.lines.false_alarm_probability) +
+                       " % per channel over " + std::to_string(lines.detection.bins_searched) +
+                       " bins, " + number_text(lines.detection.f_low_hz) + "–" +
+                       number_text(lines.detection.f_high_hz) + " Hz)";
+    if (lines.forced > 0) note += " and " + std::to_string(lines.forced) + " candidate(s) given";
+    note += ", fitted by least squares on the samples and removed before the deviations";
+    model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") + note;
+  }
 
   // 5. B → Gauss–Markov (theory.md §4.4): every convention, named, and the multi-GM form.
   model.tau_min_adev_s =

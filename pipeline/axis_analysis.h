@@ -16,6 +16,7 @@
 #include "analysis/psd.h"
 #include "analysis/psd_model.h"
 #include "analysis/slope_readoff.h"
+#include "analysis/spectral_lines.h"
 #include "analysis/tau_grid.h"
 #include "common/progress_callback.h"
 #include "models/noise_model.h"
@@ -35,6 +36,15 @@ struct AxisAnalysisOptions {
   analysis::WelchOptions welch;
   std::size_t psd_level_segment_length = 4096;  ///< L of every level of the multi-rate PSD
   int psd_bins_per_decade = 10;
+  /// Spectral lines (analysis/spectral_lines.h): searched in a raw Welch spectrum by default,
+  /// fitted on the samples and removed before the deviations; fit.sinusoid_frequencies_hz are
+  /// fitted the same way whether or not they stand above the continuum (one concept: a line
+  /// is a sinusoid fitted on the samples, never a column of the AVAR fit here).
+  bool find_lines = true;
+  analysis::LineSearchOptions lines;
+  /// Longest Welch segment of the line search [samples]: the automatic length of the record,
+  /// at most this (2^20: 1 ms of FFT per segment point budget, ~0.001 Hz at 1 kHz).
+  std::size_t line_segment_length_max = std::size_t{1} << 20;
   int bootstrap_replicates = 200;  ///< 0 = no bootstrap: intervals from (ΦᵀWΦ)⁻¹ instead
   /// Where the replicates' variances come from (pipeline/bootstrap.h).
   ReplicateSource interval_source = ReplicateSource::variance_distribution;
@@ -59,6 +69,7 @@ struct AxisAnalysis {
   analysis::SlopeReadoff slope;
   analysis::PsdReadoff psd_readoff;
   analysis::PsdCrossCheck psd_check;
+  analysis::LineDetection lines;  ///< the line search (empty when not run)
   models::AxisModel model;
 };
 
@@ -88,7 +99,7 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
 
 /// The first τ index not affected by a sensor low-pass: leading points whose σ²·τ is below
 /// 0.8× that of the next point (the curve bends under the N/√τ line), looking only at
-/// τ ≤ 8·τ0 where a digital anti-alias filter acts; when any is, the fit starts ten times
+/// τ ≤ 8·τ0 where a digital anti-alias filter acts; when any is, the fit starts 50 times
 /// above the first unbent τ (the deficit decays like 1/m). Returns the τ to start the fit at.
 double low_pass_tau_min(const analysis::DeviationCurve& oadev);
 

@@ -20,35 +20,6 @@ namespace imunoise::pipeline {
 
 namespace {
 
-/// Bias-corrected normal bootstrap interval of a positive estimate θ̂: in the log domain
-/// (a scale parameter's error is multiplicative) when every replicate is > 0, centre
-/// ln θ̂ − (mean ln θ* − ln θ̂), half-width t·sd(ln θ*); else the same in the linear domain,
-/// clipped at 0. The spread comes from the replicates' standard deviation, not from their
-/// extreme order statistics: with tens of replicates the 2.5 % / 97.5 % sample quantiles are
-/// single order statistics and give intervals that cover noticeably less than nominal, while
-/// the standard deviation is known to ±1/√(2B). t is Student's quantile with B − 1 degrees of
-/// freedom (Cornish–Fisher: z + (z³ + z)/(4ν)), which accounts for that ±1/√(2B).
-Interval bootstrap_interval(double estimate, const std::vector<double>& samples,
-                            double confidence) {
-  const std::size_t b = samples.size();
-  if (b < 2) return {estimate, estimate};
-  const double z = std::sqrt(analysis::chi_square_quantile(confidence, 1.0));
-  const double nu = static_cast<double>(b - 1);
-  const double t = z + (z * z * z + z) / (4.0 * nu);
-  const bool positive = estimate > 0.0 && std::all_of(samples.begin(), samples.end(),
-                                                      [](double v) { return v > 0.0; });
-  const auto transform = [positive](double v) { return positive ? std::log(v) : v; };
-  double mean = 0.0;
-  for (double v : samples) mean += transform(v);
-  mean /= static_cast<double>(b);
-  double ss = 0.0;
-  for (double v : samples) ss += (transform(v) - mean) * (transform(v) - mean);
-  const double sd = std::sqrt(ss / nu);
-  const double centre = 2.0 * transform(estimate) - mean;
-  if (positive) return {std::exp(centre - t * sd), std::exp(centre + t * sd)};
-  return {std::max(0.0, centre - t * sd), std::max(0.0, centre + t * sd)};
-}
-
 std::uint64_t replicate_seed(std::uint64_t seed, int replicate) {
   // splitmix64 of (seed, replicate): distinct, well-mixed master seeds per replicate.
   std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (static_cast<std::uint64_t>(replicate) + 1);
@@ -135,6 +106,35 @@ class VarianceDraw {
 };
 
 }  // namespace
+
+// Bias-corrected normal bootstrap interval of a positive estimate θ̂: in the log domain
+// (a scale parameter's error is multiplicative) when every replicate is > 0, centre
+// ln θ̂ − (mean ln θ* − ln θ̂), half-width t·sd(ln θ*); else the same in the linear domain,
+// clipped at 0. The spread comes from the replicates' standard deviation, not from their
+// extreme order statistics: with tens of replicates the 2.5 % / 97.5 % sample quantiles are
+// single order statistics and give intervals that cover noticeably less than nominal, while
+// the standard deviation is known to ±1/√(2B). t is Student's quantile with B − 1 degrees of
+// freedom (Cornish–Fisher: z + (z³ + z)/(4ν)), which accounts for that ±1/√(2B).
+Interval bootstrap_interval(double estimate, const std::vector<double>& samples,
+                            double confidence) {
+  const std::size_t b = samples.size();
+  if (b < 2) return {estimate, estimate};
+  const double z = std::sqrt(analysis::chi_square_quantile(confidence, 1.0));
+  const double nu = static_cast<double>(b - 1);
+  const double t = z + (z * z * z + z) / (4.0 * nu);
+  const bool positive = estimate > 0.0 && std::all_of(samples.begin(), samples.end(),
+                                                      [](double v) { return v > 0.0; });
+  const auto transform = [positive](double v) { return positive ? std::log(v) : v; };
+  double mean = 0.0;
+  for (double v : samples) mean += transform(v);
+  mean /= static_cast<double>(b);
+  double ss = 0.0;
+  for (double v : samples) ss += (transform(v) - mean) * (transform(v) - mean);
+  const double sd = std::sqrt(ss / nu);
+  const double centre = 2.0 * transform(estimate) - mean;
+  if (positive) return {std::exp(centre - t * sd), std::exp(centre + t * sd)};
+  return {std::max(0.0, centre - t * sd), std::max(0.0, centre + t * sd)};
+}
 
 BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               std::span<const analysis::FitPoint> points,

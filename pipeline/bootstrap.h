@@ -71,4 +71,10 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
                               double tau0_s, const analysis::FitOptions& fit_options,
                               const BootstrapOptions& options);
 
+/// The interval bootstrap_fit reports for ESTIMATE from the replicate values SAMPLES: the
+/// bias-corrected normal interval of ln θ with Student's t for the replicate count, or the same
+/// in the linear domain clipped at 0 when a replicate is ≤ 0 ({estimate, estimate} for fewer
+/// than 2 replicates). Exposed for pipeline/recording_plan, which groups the replicates.
+Interval bootstrap_interval(double estimate, const std::vector<double>& samples, double confidence);
+
 }  // namespace imunoise::pipeline

@@ -1,5 +1,8 @@
 #include "pipeline/data_quality.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "common/number_text.h"
 
 namespace imunoise::pipeline {
@@ -49,6 +52,97 @@ std::vector<std::string> quality_findings(const SamplingReport& report) {
                     c.unit);
   }
   return out;
+}
+
+}  // namespace imunoise::pipeline
+
+namespace imunoise::pipeline {
+
+std::string start_transient_finding(const StartTransient& scan, const StartTrim& trim,
+                                    std::span<const std::string> units) {
+  if (!scan.detected) {
+    if (trim.trim_s > 0.0) {
+      return "start trimmed by " + trim.setting + ": the first " +
+             significant_number_text(trim.trim_s) + " s dropped (no warm-up detected; statistic " +
+             significant_number_text(scan.statistic, 3) + " below its threshold " +
+             significant_number_text(scan.threshold, 3) + ")";
+    }
+    return "";
+  }
+  std::string text =
+      "warm-up (thermal start-up transient) detected: adjacent " +
+      significant_number_text(scan.segment_s, 3) +
+      " s means at the start differ by sum z^2 = " + significant_number_text(scan.statistic, 3) +
+      " over " + std::to_string(scan.channels.size()) + " channel(s) (threshold " +
+      significant_number_text(scan.threshold, 3) +
+      ", 0.5 % false alarms on stationary noise); A*exp(-t/tau) with tau = " +
+      significant_number_text(scan.time_constant_s, 3) + " s, A =";
+  for (std::size_t i = 0; i < scan.channels.size(); ++i) {
+    const StartTransientChannel& c = scan.channels[i];
+    text += std::string(i == 0 ? " " : ", ") + c.name + " " +
+            significant_number_text(c.amplitude, 3) + " " + (i < units.size() ? units[i] : "") +
+            " (" + significant_number_text(std::abs(c.amplitude) / c.adev_at_tau, 2) +
+            " x its ADEV at tau)";
+  }
+  text +=
+      "; cause: the sensor had not reached thermal equilibrium when the recording began, "
+      "and the drift goes into K and a ramp if fitted; remedy: ";
+  if (trim.automatic) {
+    text += trim.trim_s > 0.0
+                ? "the first " + significant_number_text(trim.trim_s) +
+                      " s were dropped (automatic trim: the transient left is at most each "
+                      "channel's ADEV at tau" +
+                      (scan.trim_capped ? ", capped at half the record" : "") + "); " +
+                      trim.setting + " DURATION to choose, " + trim.setting + " 0 to keep all"
+                : "nothing dropped (the transient is already below the ADEV at tau); " +
+                      trim.setting + " DURATION to drop the start";
+  } else if (trim.trim_s > 0.0) {
+    text += "the first " + significant_number_text(trim.trim_s) + " s were dropped (" +
+            trim.setting + "; the automatic trim would drop " +
+            significant_number_text(scan.trim_s) + " s)";
+  } else {
+    text += "nothing dropped (" + trim.setting + " 0); the automatic trim would drop " +
+            significant_number_text(scan.trim_s) + " s";
+  }
+  return text;
+}
+
+std::string outlier_finding(const std::string& name, std::string_view unit, std::size_t samples,
+                            const OutlierScan& scan, OutlierPolicy policy, double n_effect,
+                            std::string_view setting) {
+  if (!scan.significant) return "";
+  const double share = 100.0 * static_cast<double>(scan.indices.size()) /
+                       static_cast<double>(std::max<std::size_t>(1, samples));
+  std::string text =
+      name + ": " + std::to_string(scan.indices.size()) + " outliers (" +
+      significant_number_text(share, 2) + " % of the samples) beyond " +
+      significant_number_text(kOutlierThreshold, 2) + " robust scales (" +
+      significant_number_text(scan.residual_scale, 3) + " " + std::string(unit) +
+      ", MAD of the residual to the neighbours' median), the largest " +
+      significant_number_text(scan.largest, 3) + " scales; they carry " +
+      significant_number_text(100.0 * scan.excess_variance_fraction, 2) +
+      " % of the residual variance: N " + (n_effect >= 0.0 ? "+" : "") +
+      significant_number_text(100.0 * n_effect, 3) +
+      " % with them kept (first-difference RMS); cause: spikes from the sensor or its link "
+      "(bit errors, interference), not noise of the model; remedy: ";
+  const std::string flag(setting);
+  switch (policy) {
+    case OutlierPolicy::drop:
+      text += "dropped (" + flag +
+              " drop: each replaced by the mean of the good samples within +-" +
+              std::to_string(kOutlierLevelHalfWindow) +
+              " plus white noise of the robust sample sigma, so the sampling stays regular); " +
+              flag + " keep|clip to change";
+      break;
+    case OutlierPolicy::clip:
+      text += "clipped to the threshold around the neighbours' median (" + flag +
+              " clip; N stays biased by what is left); " + flag + " drop replaces them";
+      break;
+    case OutlierPolicy::keep:
+      text += "kept (" + flag + " keep): N above is biased; " + flag + " drop removes them";
+      break;
+  }
+  return text;
 }
 
 }  // namespace imunoise::pipeline

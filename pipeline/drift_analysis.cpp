@@ -32,14 +32,20 @@ std::size_t whole_steps(double t, double step, const std::string& what) {
   return static_cast<std::size_t>(rounded);
 }
 
+/// Stationary variance of every GM term of AXIS (bias_gm and gm_terms; independent, so they add).
+double gm_variance(const ins::SensorAxisNoise& axis) {
+  double v = axis.bias_gm.sigma * axis.bias_gm.sigma;
+  for (const GaussMarkov& gm : axis.gm_terms) v += gm.sigma * gm.sigma;
+  return v;
+}
+
 /// 1σ of the gyro-bias uncertainty over the alignment window (for the gyrocompass
-/// decision): the σ of a window mean of white noise, RW and the GM stand-in (theory.md §7.6).
+/// decision): the σ of a window mean of white noise, RW and the GM terms (theory.md §7.6).
 double gyro_bias_sigma(const ins::InsSensorNoise& noise, double align_s) {
   double worst = 0.0;
   for (const auto& a : noise.gyro) {
-    const double gm = a.bias_gm.sigma;
     const double v = a.white_noise * a.white_noise / align_s +
-                     a.random_walk * a.random_walk * align_s / 3.0 + gm * gm;
+                     a.random_walk * a.random_walk * align_s / 3.0 + gm_variance(a);
     worst = std::max(worst, std::sqrt(v));
   }
   return worst;
@@ -148,9 +154,8 @@ MotionCheck check_stationary(const ImuSeries& s, const ins::InsSensorNoise& nois
   for (int i = 0; i < 3; ++i) {
     const auto& g = noise.gyro[i];
     const auto& a = noise.accel[i];
-    sigma[i] = std::sqrt(g.white_noise * g.white_noise / dt + g.bias_gm.sigma * g.bias_gm.sigma);
-    sigma[3 + i] =
-        std::sqrt(a.white_noise * a.white_noise / dt + a.bias_gm.sigma * a.bias_gm.sigma);
+    sigma[i] = std::sqrt(g.white_noise * g.white_noise / dt + gm_variance(g));
+    sigma[3 + i] = std::sqrt(a.white_noise * a.white_noise / dt + gm_variance(a));
   }
   std::vector<Eigen::Vector3d> mean_f(windows), mean_w(windows);
   std::array<double, 6> worst_ratio{};
@@ -256,6 +261,7 @@ DriftAnalysis analyze_drift(const ImuSeries& s, const ins::InsSensorNoise& noise
   p.times_s = out.time_s;
   p.alignment_time_s = o.align_s;
   p.heading_sigma_rad = first.heading_sigma_rad;
+  p.budget = true;
   out.prediction = ins::predict_stationary_drift(noise, p);
 
   const double m = static_cast<double>(segments);

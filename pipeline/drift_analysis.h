@@ -118,6 +118,7 @@ struct DriftConsistency {
 struct DriftAnalysis {
   std::vector<double> time_s;  ///< output grid: output_step_s, 2·output_step_s, … navigation_s
   ins::DriftPrediction prediction;     ///< on time_s, for the alignment protocol of the segments
+                                       ///< (with its variance budget)
   std::vector<DriftSegment> segments;  ///< each on time_s
   std::vector<ins::Alignment> alignments;     ///< of each segment, in the order of segments
   std::vector<DriftConsistency> consistency;  ///< at report_times_s

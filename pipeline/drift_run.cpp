@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "common/number_text.h"
 #include "common/units.h"
 #include "ins/noise_from_model.h"
 #include "models/noise_simulator.h"
@@ -80,12 +81,92 @@ DriftSeries envelope(const DriftAnalysis& analysis) {
   return s;
 }
 
+/// How the covariance carries B, the GM terms and R (drift_summary.json's protocol).
+std::string bias_states_note(const models::NoiseModel& model, const ins::InsSensorNoise& noise,
+                             models::GmConvention convention) {
+  std::size_t terms = 0, ramps = 0;
+  for (const auto* sensor : {&noise.gyro, &noise.accel})
+    for (const ins::SensorAxisNoise& a : *sensor) {
+      terms += a.gm_terms.size();
+      ramps += a.ramp > 0.0 ? 1 : 0;
+    }
+  std::string note =
+      "multi_gm: B as the model's Gauss-Markov terms (bias_instability_multi_gm) "
+      "and every fitted GM term, each its own error state (" +
+      std::to_string(terms) + " in all); R as a slope state on " + std::to_string(ramps) + " axes";
+  const std::vector<std::string> fallback = ins::single_gm_fallback_axes(model);
+  if (!fallback.empty()) {
+    note += "; B as one GM (" + std::string(models::name_of(convention)) +
+            ", the model has no multi_gm) on";
+    for (const std::string& axis : fallback) note += " " + axis;
+  }
+  return note;
+}
+
+/// Samples [FIRST, FIRST + COUNT) of RECORDING as a recording of their own (time stamps
+/// shifted to start at 0; the sampling report kept: it describes the whole read).
+Recording part_of(const Recording& recording, std::size_t first, std::size_t count,
+                  const std::string& label) {
+  Recording part;
+  part.source_path = recording.source_path + " (" + label + ")";
+  part.sample_period_s = recording.sample_period_s;
+  part.start_time_s = recording.start_time_s;
+  part.report = recording.report;
+  if (!recording.time_s.empty()) {
+    const double t0 = recording.time_s[first];
+    part.start_time_s += t0;
+    for (std::size_t i = first; i < first + count; ++i)
+      part.time_s.push_back(recording.time_s[i] - t0);
+  }
+  for (const Channel& c : recording.channels) {
+    Channel copy = c;
+    copy.values.assign(c.values.begin() + static_cast<std::ptrdiff_t>(first),
+                       c.values.begin() + static_cast<std::ptrdiff_t>(first + count));
+    part.channels.push_back(std::move(copy));
+  }
+  return part;
+}
+
+std::string sample_range_text(std::size_t first, std::size_t end, double dt) {
+  return "samples " + std::to_string(first) + " ... " + std::to_string(end - 1) + " (" +
+         significant_number_text(static_cast<double>(first) * dt) + " ... " +
+         significant_number_text(static_cast<double>(end) * dt) + " s)";
+}
+
+/// The split-sample check (see DriftRunOptions::holdout_half).
+DriftHoldout holdout_half(const Recording& recording, const DriftRunOptions& options,
+                          const DriftOptions& o) {
+  const std::size_t n = recording.sample_count();
+  const std::size_t half = n / 2;
+  const Recording first = part_of(recording, 0, half, "first half");
+  const Recording second = part_of(recording, half, n - half, "second half");
+  const RecordingAnalysis fit =
+      analyze_recording(first, first.source_path, options.holdout_analysis);
+  ins::InsNoiseOptions noise_options;
+  noise_options.gm_convention = options.gm_convention;
+  noise_options.model_terms_as_states = true;
+  const ins::InsSensorNoise noise = ins::ins_sensor_noise(fit.model, noise_options);
+  DriftOptions judged = o;
+  judged.progress = {};
+  // The warm-up belongs to the start of the recording, i.e. to the fitted half.
+  judged.warmup_s = 0.0;
+  DriftAnalysis analysis = analyze_drift(imu_series(second), noise, judged);
+  DriftHoldout out;
+  const double dt = recording.sample_period_s;
+  out.fitted_on = "first half: " + sample_range_text(0, half, dt);
+  out.judged_on = "second half: " + sample_range_text(half, n, dt);
+  out.segments = analysis.segments.size();
+  out.consistency = std::move(analysis.consistency);
+  return out;
+}
+
 }  // namespace
 
 DriftResult run_drift(const Recording& recording, const models::NoiseModel& model,
                       const DriftRunOptions& options, const ProgressCallback& progress) {
   ins::InsNoiseOptions noise_options;
   noise_options.gm_convention = options.gm_convention;
+  noise_options.model_terms_as_states = true;
   const ins::InsSensorNoise noise = ins::ins_sensor_noise(model, noise_options);
   const DriftOptions o = drift_options(options, progress);
 
@@ -106,6 +187,13 @@ DriftResult run_drift(const Recording& recording, const models::NoiseModel& mode
   DriftAnalysis analysis = analyze_drift(series, noise, o);
   DriftResult out;
   out.series = envelope(analysis);
+  for (const double t : o.report_times_s) {
+    const auto i = static_cast<std::size_t>(std::llround(t / o.output_step_s)) - 1;
+    const double drms = analysis.prediction.horizontal_drms_m[i];
+    out.budget.time_s.push_back(analysis.time_s[i]);
+    out.budget.variance_m2.push_back(analysis.prediction.horizontal_variance_budget_m2[i]);
+    out.budget.predicted_variance_m2.push_back(drms * drms);
+  }
   DriftSummary& summary = out.summary;
   summary.consistency = std::move(analysis.consistency);
   if (options.monte_carlo_runs > 0) {
@@ -137,8 +225,10 @@ DriftResult run_drift(const Recording& recording, const models::NoiseModel& mode
   summary.protocol.gyro_bias = "estimated over each alignment window and removed (§7.3)";
   summary.protocol.heading = analysis.heading_note;
   summary.protocol.bias_instability_as_gm = std::string(models::name_of(options.gm_convention));
+  summary.protocol.bias_states = bias_states_note(model, noise, options.gm_convention);
   summary.motion = motion;
   summary.forced = options.force && !motion.stationary;
+  if (options.holdout_half) summary.holdout = holdout_half(recording, options, o);
   out.segments = std::move(analysis.segments);
   return out;
 }

@@ -19,6 +19,7 @@
 #include "pipeline/drift_analysis.h"
 #include "pipeline/drift_series.h"
 #include "pipeline/recording.h"
+#include "pipeline/recording_analysis.h"
 
 namespace imunoise::pipeline {
 
@@ -44,12 +45,18 @@ struct DriftRunOptions {
   double output_step_s = 1.0;      ///< time step of the series [s]
   /// Times of the consistency statistics [s], each ≤ navigation_s (DriftOptions::report_times_s).
   std::vector<double> report_times_s{60.0, 300.0, 600.0};
-  /// Which single GM stands for B in the prediction (theory.md §4.4).
+  /// Which single GM stands for B in the prediction where an axis has no multi_gm terms
+  /// (theory.md §4.4); with multi_gm, B is carried as those terms.
   models::GmConvention gm_convention = models::GmConvention::peak_match;
   int monte_carlo_runs = 100;  ///< 0: no Monte Carlo; else ≥ 2
   std::uint64_t seed = 1;      ///< of the Monte Carlo
   bool force = false;          ///< run on a recording with time gaps or one that moves
   std::string model_path;      ///< the model.yaml the model came from (named in the summary)
+  /// Split-sample validation: fit a model on the first half of the recording
+  /// (analyze_recording() with holdout_analysis, as `imunoise analyze` does by default), then
+  /// predict and judge the segments of the second half with it (DriftSummary::holdout).
+  bool holdout_half = false;
+  RecordingAnalysisOptions holdout_analysis;  ///< the fit of the first half (defaults)
 };
 
 /// How the segments were run (the "protocol" of drift_summary.json).
@@ -59,13 +66,24 @@ struct DriftProtocol {
   std::string vertical_channel;        ///< how the vertical channel is treated
   std::string gyro_bias;               ///< how the gyro bias is treated
   std::string heading;                 ///< how the first segment got its heading
-  std::string bias_instability_as_gm;  ///< models::name_of(GmConvention)
+  std::string bias_instability_as_gm;  ///< models::name_of(GmConvention) (single-GM fallback)
+  /// Which error states carry B, the GM terms and R in the covariance, e.g. "multi_gm: B as
+  /// the model's Gauss-Markov terms, ..."; names the axes that fell back to one GM.
+  std::string bias_states{};
 };
 
 /// The Monte Carlo that ran.
 struct DriftMonteCarlo {
   int runs = 0;
   std::uint64_t seed = 0;
+};
+
+/// The split-sample check: a model fitted on one part of the recording judged on another.
+struct DriftHoldout {
+  std::string fitted_on;     ///< e.g. "first half: samples 0 … 719999 (0 … 14400 s)"
+  std::string judged_on;     ///< e.g. "second half: samples 720000 … (14400 … 28800 s)"
+  std::size_t segments = 0;  ///< segments of the judged part
+  std::vector<DriftConsistency> consistency;  ///< at the report times, without Monte Carlo
 };
 
 /// What drift_summary.json holds: the inputs, the protocol, the stationarity check and the
@@ -79,6 +97,16 @@ struct DriftSummary {
   bool forced = false;  ///< not stationary, run anyway
   std::vector<DriftConsistency> consistency;
   std::optional<DriftMonteCarlo> monte_carlo;  ///< absent when it did not run
+  std::optional<DriftHoldout> holdout;         ///< with DriftRunOptions::holdout_half
+};
+
+/// The drift budget (drift_budget.csv): the predicted horizontal variance σ_N² + σ_E² of
+/// the same-file prediction split by source (ins::DriftBudgetTerm; independent sources, each
+/// propagated alone, so a row sums to the predicted variance) at each report time.
+struct DriftBudget {
+  std::vector<double> time_s;                    ///< the report times [s]
+  std::vector<ins::DriftBudgetRow> variance_m2;  ///< per time, in DriftBudgetTerm order [m²]
+  std::vector<double> predicted_variance_m2;     ///< σ_N² + σ_E² at each time [m²]
 };
 
 /// Everything `imunoise drift` writes.
@@ -86,6 +114,7 @@ struct DriftResult {
   DriftSummary summary;
   DriftSeries series;                  ///< the envelope (with the Monte Carlo when it ran)
   std::vector<DriftSegment> segments;  ///< the recorded segments, each on series.time_s
+  DriftBudget budget;                  ///< of the prediction at the report times
 };
 
 /// The drift job: the six channels of RECORDING (gyro_x … accel_z, DriftRefused
@@ -95,8 +124,11 @@ struct DriftResult {
 /// with options.monte_carlo_runs > 0, monte_carlo_drift() of MODEL's simulator terms (flicker
 /// B over τ up to max(10⁴ s, 10 × segment)). PROGRESS (optional) gets the stages of
 /// analyze_drift() ("segments") and monte_carlo_drift() ("Monte Carlo"), in that order.
+/// With options.holdout_half, also the split-sample check (DriftSummary::holdout; the fit of
+/// the first half reports progress as analyze_recording does, stage names of axis analysis).
 /// @throws DriftRefused as above (messages start with recording.source_path), InputError from
-///   the model, the options and analyze_drift(), AnalysisError from the alignment.
+///   the model, the options and analyze_drift() (also when a half holds fewer than 2
+///   segments), AnalysisError from the alignment or the fit of the first half.
 DriftResult run_drift(const Recording& recording, const models::NoiseModel& model,
                       const DriftRunOptions& options, const ProgressCallback& progress = {});
 

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,9 @@
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
 #include "pipeline/gap_policy.h"
+#include "pipeline/outliers.h"
 #include "pipeline/recording.h"
+#include "pipeline/start_transient.h"
 
 namespace imunoise::pipeline {
 
@@ -25,7 +28,22 @@ struct RecordingAnalysisOptions {
   /// How messages and the data-quality note name the gap policy (plan_gaps); the CLI: "--gaps".
   std::string gap_policy_setting{kGapPolicySetting};
   GapPolicy gaps = GapPolicy::refuse;  ///< what to do with time-stamp gaps
-  unsigned threads = 0;                ///< worker threads across channels (0 = all cores)
+  /// What to do with the outliers of a channel whose outliers carry a finding
+  /// (pipeline/outliers.h); channels without the finding are analysed as recorded.
+  OutlierPolicy outliers = OutlierPolicy::drop;
+  std::string outlier_setting{"outliers"};  ///< how the finding names the setting ("--outliers")
+  /// Start of the record to drop [s]: unset = the automatic trim of the warm-up scan
+  /// (pipeline/start_transient.h; 0 when none is detected), 0 = keep everything.
+  std::optional<double> trim_start_s;
+  std::string trim_setting{"trim_start"};  ///< how the finding names it ("--trim-start")
+  /// With a "temperature" column [°C] (and no gaps): subtract each channel's
+  /// bias-vs-temperature coefficient × (T − mean T) before the analysis
+  /// (pipeline/temperature_coefficient.h). The coefficient is reported either way.
+  bool temperature_compensate = false;
+  std::string temperature_setting{"temperature_compensate"};  ///< its name in the finding
+  /// How the low-pass finding names the switch that keeps the short τ ("--no-low-pass-check").
+  std::string low_pass_setting{"no_low_pass_check"};
+  unsigned threads = 0;  ///< worker threads across channels (0 = all cores)
 };
 
 /// The result of one analysis.
@@ -33,6 +51,8 @@ struct RecordingAnalysis {
   models::NoiseModel model;
   std::vector<AxisAnalysis> axes;  ///< in model.axes order
   double tau0_s = 0.0;
+  StartTransient start_transient;  ///< the warm-up scan (scanned false: record too short)
+  double trimmed_s = 0.0;          ///< start dropped before the analysis [s]
 };
 
 /// What analyze_recording reports while it runs; every part is optional and none changes the
@@ -50,9 +70,15 @@ struct ChannelFeedback {
 /// the data in the model (model.source; sensor_name is its file name) and in messages.
 /// Time-stamp gaps follow options.gaps (plan_gaps): refused, split into gap-free pieces whose
 /// curves and PSD are pooled, or filled by linear interpolation — either way said in
-/// model.data_quality. Throws InputError for a recording without IMU channels or without a
-/// usable sample period, AnalysisError when the data cannot give a fit (prefixed with SOURCE;
-/// the first failing channel in channel order).
+/// model.data_quality. Before the fit, the data-quality stage: per channel the outliers
+/// (find_outliers; handled by options.outliers when they carry a finding), then the warm-up
+/// scan of the start of the record (detect_start_transient) and the trim of its start
+/// (options.trim_start_s), and with a temperature column each channel's
+/// bias-vs-temperature coefficient (options.temperature_compensate removes it) — each finding with
+/// its cause and remedy in model.data_quality, the trim in model.samples and duration_s. Throws
+/// InputError for a recording without IMU channels or without a usable sample period, AnalysisError
+/// when the data cannot give a fit (prefixed with SOURCE; the first failing channel in channel
+/// order).
 RecordingAnalysis analyze_recording(const Recording& recording, const std::string& source,
                                     const RecordingAnalysisOptions& options,
                                     const ChannelFeedback& feedback = {});

@@ -8,20 +8,15 @@
 
 namespace imunoise::report {
 
-std::string drift_summary_text(const pipeline::DriftSummary& s) {
-  const bool mc = s.monte_carlo.has_value();
-  std::ostringstream out;
-  out << "drift: " << s.protocol.segments << " segments of "
-      << significant_number_text(s.protocol.align_s) << " s alignment + "
-      << significant_number_text(s.protocol.navigation_s) << " s navigation, height hold\n";
-  if (!s.location.given)
-    out << "location not given: assumed 45 deg N, 0 deg E, 0 m (--location LAT,LON,H)\n";
-  out << "heading: " << s.protocol.heading << "\n";
-  if (!s.motion.stationary) out << "WARNING: not stationary (" << s.motion.reason << "), forced\n";
+namespace {
+
+/// One row per report time: predicted, actual, ratio, NEES, coverage (and the MC RMS).
+void consistency_rows(std::ostringstream& out,
+                      const std::vector<pipeline::DriftConsistency>& consistency, bool mc) {
   out << "\n  time   predicted DRMS   actual RMS   ratio [95% CI]        mean NEES [95% band]"
          "     coverage 1/2/3 sigma (exp. 39/86/99 %)"
       << (mc ? "   MC RMS" : "") << "\n";
-  for (const pipeline::DriftConsistency& c : s.consistency) {
+  for (const pipeline::DriftConsistency& c : consistency) {
     out << "  " << significant_number_text(c.time_s) << " s   "
         << significant_number_text(c.predicted_drms_m) << " m   "
         << significant_number_text(c.actual_rms_m) << " m   "
@@ -37,6 +32,43 @@ std::string drift_summary_text(const pipeline::DriftSummary& s) {
         << significant_number_text(100 * c.coverage[2], 3) << " %";
     if (mc && c.monte_carlo_radial_rms_m)
       out << "   " << significant_number_text(*c.monte_carlo_radial_rms_m) << " m";
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+std::string drift_summary_text(const pipeline::DriftSummary& s) {
+  const bool mc = s.monte_carlo.has_value();
+  std::ostringstream out;
+  out << "drift: " << s.protocol.segments << " segments of "
+      << significant_number_text(s.protocol.align_s) << " s alignment + "
+      << significant_number_text(s.protocol.navigation_s) << " s navigation, height hold\n";
+  if (!s.location.given)
+    out << "location not given: assumed 45 deg N, 0 deg E, 0 m (--location LAT,LON,H)\n";
+  out << "heading: " << s.protocol.heading << "\n";
+  if (!s.motion.stationary) out << "WARNING: not stationary (" << s.motion.reason << "), forced\n";
+  consistency_rows(out, s.consistency, mc);
+  if (s.holdout) {
+    out << "\nsplit-sample check: model fitted on the " << s.holdout->fitted_on << ",\n  judged on "
+        << s.holdout->segments << " segments of the " << s.holdout->judged_on << "\n";
+    consistency_rows(out, s.holdout->consistency, false);
+  }
+  return out.str();
+}
+
+std::string drift_budget_text(const pipeline::DriftBudget& b) {
+  if (b.time_s.empty()) return "";
+  std::ostringstream out;
+  out << "\ndrift budget: share of the predicted horizontal variance [%]\n  time  ";
+  for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g)
+    out << "  " << ins::name_of(static_cast<ins::DriftBudgetTerm>(g));
+  out << "\n";
+  for (std::size_t i = 0; i < b.time_s.size(); ++i) {
+    out << "  " << significant_number_text(b.time_s[i]) << " s";
+    const double total = b.predicted_variance_m2[i];
+    for (const double v : b.variance_m2[i])
+      out << "  " << significant_number_text(total > 0.0 ? 100.0 * v / total : 0.0, 3);
     out << "\n";
   }
   return out.str();

@@ -14,6 +14,7 @@
 #include "analysis/tau_grid.h"
 #include "common/errors.h"
 #include "common/number_text.h"
+#include "io/duration_parser.h"
 #include "io/fftw_wisdom.h"
 #include "io/stage_progress.h"
 #include "io/terminal_progress_bar.h"
@@ -58,6 +59,7 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
     }
   }
   options.fit.sinusoid_frequencies_hz = s.sinusoid_hz;
+  options.find_lines = !s.no_lines;
   options.fit.tau_max_s = s.tau_max_s;
   options.auto_low_pass = !s.no_low_pass_check;
   return options;
@@ -87,9 +89,14 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
                "also fit first-order Gauss-Markov terms (grid of correlation times, refined)")
       ->group(group);
   cmd.add_option("--sinusoid-hz", s.sinusoid_hz,
-                 "candidate sinusoid frequencies F1,F2,... [Hz] (e.g. lines seen in psd.csv); "
-                 "each amplitude is fitted and kept only if the data support it")
+                 "sinusoid frequencies F1,F2,... [Hz] fitted (on the samples, frequency refined "
+                 "within one PSD bin) and removed before the fit even when the automatic line "
+                 "search does not find them")
       ->delimiter(',')
+      ->group(group);
+  cmd.add_flag("--no-lines", s.no_lines,
+               "no automatic spectral-line search (by default lines standing above the local "
+               "PSD continuum, false-alarm probability 1 % per channel, are fitted and removed)")
       ->group(group);
   cmd.add_option("--tau-min", s.tau_min_s, "fit only tau >= this [s]")->group(group);
   cmd.add_option("--tau-max", s.tau_max_s, "fit only tau <= this [s]")->group(group);
@@ -103,6 +110,23 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
                      " samples dropped) or interpolate (fill each gap linearly; gaps over 1 % "
                      "of the record or 1000 samples refused)")
       ->capture_default_str()
+      ->group(group);
+  cmd.add_option("--outliers", s.outliers,
+                 "outliers (samples beyond 4 robust scales of the residual to their neighbours' "
+                 "median), when they carry a finding: keep, clip (to the threshold) or drop "
+                 "(each replaced by its local mean plus white noise of the robust sigma, so the "
+                 "sampling stays regular and N unbiased)")
+      ->capture_default_str()
+      ->group(group);
+  cmd.add_option("--trim-start", s.trim_start,
+                 "drop this much of the start (e.g. 20min, 600s; 0 = keep everything); default: "
+                 "the automatic trim of a detected warm-up transient (stated in model.yaml's "
+                 "data_quality and the summary)")
+      ->group(group);
+  cmd.add_flag("--temperature-compensate", s.temperature_compensate,
+               "with a temperature column: subtract each channel's bias-vs-temperature "
+               "coefficient x (T - mean T) before the fit (the coefficient is reported either "
+               "way)")
       ->group(group);
   cmd.add_option(
          "--fftw-wisdom", s.fftw_wisdom,
@@ -132,6 +156,15 @@ pipeline::RecordingAnalysisOptions recording_analysis_options(const AnalysisSett
   options.axis = axis_options(settings, tau0_s);
   options.gaps = gap_policy_option(settings);
   options.gap_policy_setting = kGapsFlag;
+  options.outliers = pipeline::parse_outlier_policy(settings.outliers, "--outliers");
+  options.outlier_setting = "--outliers";
+  if (settings.trim_start) {
+    options.trim_start_s = io::parse_duration_s(*settings.trim_start, "--trim-start", true);
+  }
+  options.trim_setting = "--trim-start";
+  options.temperature_compensate = settings.temperature_compensate;
+  options.temperature_setting = "--temperature-compensate";
+  options.low_pass_setting = "--no-low-pass-check";
   options.threads = settings.threads;
   return options;
 }

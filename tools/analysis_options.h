@@ -36,8 +36,14 @@ struct AnalysisSettings {
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;
   std::vector<double> sinusoid_hz;
+  bool no_lines = false;  ///< `--no-lines`: no automatic spectral-line search
   /// Time-stamp gaps: "refuse" (default), "split" or "interpolate" (pipeline::GapPolicy).
   std::string gaps = "refuse";
+  /// Outliers of a channel whose outliers carry a finding: "keep", "clip" or "drop" (default).
+  std::string outliers = "drop";
+  /// `--trim-start DURATION`: the start to drop; unset = the automatic warm-up trim, "0" = none.
+  std::optional<std::string> trim_start;
+  bool temperature_compensate = false;  ///< `--temperature-compensate`
   /// `--fftw-wisdom FILE`; unset: $IMUNOISE_FFTW_WISDOM, if set and not empty; set to "": no
   /// wisdom whatever the environment says.
   std::optional<std::string> fftw_wisdom;
@@ -63,7 +69,7 @@ struct AnalysisFeedback {
 /// The pipeline's options of SETTINGS for a record of sample period TAU0_S, with the flags as
 /// the names the pipeline's messages and notes give its settings (--gaps, --bootstrap N).
 /// Throws InputError naming the flag for a value out of range (--confidence, --bootstrap,
-/// --sinusoid-hz beyond Nyquist, --taus, --gaps).
+/// --sinusoid-hz beyond Nyquist, --taus, --gaps, --outliers, --trim-start).
 pipeline::RecordingAnalysisOptions recording_analysis_options(const AnalysisSettings& settings,
                                                               double tau0_s);
 

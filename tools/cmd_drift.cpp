@@ -55,6 +55,7 @@ struct DriftArgs {
   std::uint64_t seed = 1;
   std::string gm_convention = "peak_match";
   bool force = false;
+  std::string holdout = "none";
   std::string output;
   Verbosity verbosity;
 };
@@ -95,6 +96,7 @@ pipeline::DriftRunOptions drift_options(const DriftArgs& a) {
   o.seed = a.seed;
   o.force = a.force;
   o.model_path = a.model_path;
+  o.holdout_half = a.holdout == "half";
   return o;
 }
 
@@ -136,13 +138,15 @@ void run_drift(const DriftArgs& a, io::StageTimes& times) {
   io::write_drift_segments_csv((dir / "drift_segments.csv").string(), result.segments);
   io::write_drift_envelope_csv((dir / "drift_envelope.csv").string(), result.series);
   io::write_drift_summary_json((dir / "drift_summary.json").string(), result.summary);
+  io::write_drift_budget_csv((dir / "drift_budget.csv").string(), result.budget);
 
-  std::cout << report::drift_summary_text(result.summary);
+  std::cout << report::drift_summary_text(result.summary)
+            << report::drift_budget_text(result.budget);
   write_command_file(dir.string());
   const report::ReportOutput report = report::write_report(dir.string());
   std::cout << "\nwrote " << (dir / "drift_segments.csv").string()
-            << ", drift_envelope.csv, drift_summary.json, plots/\nreport: " << report.html_path
-            << "\n";
+            << ", drift_envelope.csv, drift_summary.json, drift_budget.csv, plots/\nreport: "
+            << report.html_path << "\n";
 }
 
 }  // namespace
@@ -188,6 +192,11 @@ void register_drift_command(CLI::App& app) {
                   "peak_match (default), sigma_equals_b")
       ->check(CLI::IsMember(gm_conventions()));
   cmd->add_flag("--force", args->force, "run even if the IMU moves or the record has gaps");
+  cmd->add_option("--holdout", args->holdout,
+                  "split-sample check: 'half' fits a model on the first half of REC (as "
+                  "'imunoise analyze' does) and judges the segments of the second half with it, "
+                  "beside the numbers of --model (default none)")
+      ->check(CLI::IsMember({"none", "half"}));
   cmd->add_option("-o,--output", args->output, "output directory (created if needed)")->required();
   add_verbosity_options(*cmd, args->verbosity);
   cmd->callback([args, location] {

@@ -23,5 +23,6 @@ void register_simulate_command(CLI::App& app);     ///< imunoise simulate
 void register_report_command(CLI::App& app);       ///< imunoise report (report.html)
 void register_fftw_wisdom_command(CLI::App& app);  ///< imunoise fftw-wisdom (PSD plans)
 void register_fleet_command(CLI::App& app);        ///< imunoise fleet (many units, spec)
+void register_plan_command(CLI::App& app);         ///< imunoise plan (how long to record)
 
 }  // namespace imunoise::tools

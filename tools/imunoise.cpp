@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   imunoise::tools::register_report_command(app);
   imunoise::tools::register_fftw_wisdom_command(app);
   imunoise::tools::register_fleet_command(app);
+  imunoise::tools::register_plan_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

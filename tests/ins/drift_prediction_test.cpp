@@ -451,5 +451,151 @@ TEST(DriftPrediction, RejectsBadOptions) {
                                             "gyro[y].white_noise");
 }
 
+// ------------------------------------------------------------------ issue 25: every term as a
+// state
+
+/// Gyro and accel white noise plus NOISE's bias terms on every axis (GYRO on the gyros,
+/// ACCEL on the accelerometers).
+InsSensorNoise with_white(const SensorAxisNoise& gyro, const SensorAxisNoise& accel) {
+  InsSensorNoise noise;
+  noise.gyro.fill(gyro);
+  noise.accel.fill(accel);
+  for (auto& a : noise.gyro) a.white_noise = kN;
+  for (auto& a : noise.accel) a.white_noise = 1.47e-3;
+  return noise;
+}
+
+void expect_same_prediction(const DriftPrediction& a, const DriftPrediction& b, double rel,
+                            const std::string& what) {
+  ASSERT_EQ(a.time_s.size(), b.time_s.size());
+  for (std::size_t k = 0; k < a.time_s.size(); ++k) {
+    EXPECT_NEAR(a.north_sigma_m[k] / b.north_sigma_m[k], 1.0, rel) << what << " k=" << k;
+    EXPECT_NEAR(a.east_sigma_m[k] / b.east_sigma_m[k], 1.0, rel) << what << " k=" << k;
+    EXPECT_NEAR(a.velocity_horizontal_drms_m_per_s[k] / b.velocity_horizontal_drms_m_per_s[k], 1.0,
+                rel)
+        << what;
+    EXPECT_NEAR(a.roll_sigma_rad[k] / b.roll_sigma_rad[k], 1.0, rel) << what;
+    EXPECT_NEAR(a.heading_sigma_rad[k] / b.heading_sigma_rad[k], 1.0, rel) << what;
+  }
+}
+
+TEST(DriftPrediction, GmTermsAreOwnStatesAndIndependentTermsAdd) {
+  // Two independent GMs of equal T_c and variance σ²/2 each sum to one GM of σ² (the
+  // autocovariances add), so the prediction with them as gm_terms must equal the one with
+  // the single bias_gm — with alignment (the §7.6 P₀ per term: window means and end values
+  // add), Earth rate and a heading σ. And one gm_term equals the same GM as bias_gm.
+  const GaussMarkov gyro_gm{1.3e-4, 15.6}, accel_gm{5e-4, 40.0};
+  SensorAxisNoise gyro_single, accel_single, gyro_split, accel_split, gyro_one, accel_one;
+  gyro_single.bias_gm = gyro_gm;
+  accel_single.bias_gm = accel_gm;
+  const double r = std::sqrt(0.5);
+  gyro_split.gm_terms = {{r * gyro_gm.sigma, gyro_gm.tau_c_s},
+                         {r * gyro_gm.sigma, gyro_gm.tau_c_s}};
+  accel_split.gm_terms = {{r * accel_gm.sigma, accel_gm.tau_c_s},
+                          {r * accel_gm.sigma, accel_gm.tau_c_s}};
+  gyro_one.gm_terms = {gyro_gm};
+  accel_one.gm_terms = {accel_gm};
+  for (const double ta : {0.0, 10.0, 120.0}) {
+    DriftPredictionOptions o;
+    o.latitude_rad = kLat45;
+    o.heading_rad = 20.0 * kDeg;
+    o.heading_sigma_rad = 0.5 * kDeg;
+    o.alignment_time_s = ta;
+    o.times_s = {1.0, 60.0, 600.0};
+    const DriftPrediction single =
+        predict_stationary_drift(with_white(gyro_single, accel_single), o);
+    const std::string what = "T_a = " + std::to_string(ta);
+    expect_same_prediction(predict_stationary_drift(with_white(gyro_split, accel_split), o), single,
+                           1e-9, what + ", split");
+    expect_same_prediction(predict_stationary_drift(with_white(gyro_one, accel_one), o), single,
+                           1e-9, what + ", one term");
+  }
+}
+
+TEST(DriftPrediction, AccelRampFollowsTheSchulerClosedForm) {
+  // An accel slope s on the north axis (heading 0, Schuler only, no alignment): δr̈_N =
+  // −ω_s² δr_N + s·t gives δr_N = (s/ω_s²)(t − sin(ω_s t)/ω_s), ω_s² = g/(R_N + h). With
+  // E s² = R² (the slope state's P₀), σ_N = R·|t − sin(ω_s t)/ω_s|/ω_s². 0.1 %: the latitude
+  // derivatives of R_N and g kept in F (≤ e²-relative, error_state_model.h).
+  constexpr double kR = 2e-7;  // [m/s³]
+  InsSensorNoise ramp;
+  ramp.accel[0].ramp = kR;
+  DriftPredictionOptions o = section_8_4();
+  o.times_s = {60.0, 600.0, 3600.0};
+  const DriftPrediction p = predict_stationary_drift(ramp, o);
+  const double ws = std::sqrt(gravity_ned(kLat45, 0.0).z() / meridian_radius(kLat45));
+  for (std::size_t k = 0; k < o.times_s.size(); ++k) {
+    const double t = o.times_s[k];
+    const double expected = kR * (t - std::sin(ws * t) / ws) / (ws * ws);
+    EXPECT_NEAR(p.north_sigma_m[k] / expected, 1.0, 1e-3) << "t = " << t;
+    EXPECT_LT(p.east_sigma_m[k], 1e-9 * p.north_sigma_m[k]);
+  }
+  // BiasModel::gauss_markov has no RW state to integrate the slope: the ramp is dropped.
+  o.bias = BiasModel::gauss_markov;
+  EXPECT_EQ(predict_stationary_drift(ramp, o).north_sigma_m, std::vector<double>(3, 0.0));
+}
+
+TEST(DriftPrediction, BudgetContributionsSumToThePredictedVariance) {
+  // Every source at once (N, K, turn-on σ, B as bias_gm and two gm_terms, ramps, heading σ),
+  // aligned, Earth rate on: the six contributions are variances of independent sources, so
+  // each is ≥ 0 and they sum to σ_N² + σ_E² (to rounding; 1e-9 relative).
+  SensorAxisNoise gyro, accel;
+  gyro.random_walk = kK;
+  gyro.turn_on_bias_sigma = kB;
+  gyro.bias_gm = {1.3e-4, 15.6};
+  gyro.gm_terms = {{5e-5, 3.0}, {4e-5, 300.0}};
+  gyro.ramp = 1e-8;
+  accel.random_walk = 5e-5;
+  accel.bias_gm = {5e-4, 40.0};
+  accel.gm_terms = {{2e-4, 400.0}};
+  accel.ramp = 2e-7;
+  const InsSensorNoise noise = with_white(gyro, accel);
+  for (const double ta : {0.0, 60.0}) {
+    DriftPredictionOptions o;
+    o.latitude_rad = kLat45;
+    o.heading_rad = 30.0 * kDeg;
+    o.heading_sigma_rad = 1.0 * kDeg;
+    o.alignment_time_s = ta;
+    o.times_s = {1.0, 60.0, 300.0, 600.0, 1800.0};
+    o.budget = true;
+    const DriftPrediction p = predict_stationary_drift(noise, o);
+    ASSERT_EQ(p.horizontal_variance_budget_m2.size(), o.times_s.size());
+    for (std::size_t k = 0; k < o.times_s.size(); ++k) {
+      const double total = p.horizontal_drms_m[k] * p.horizontal_drms_m[k];
+      double sum = 0.0;
+      for (const double v : p.horizontal_variance_budget_m2[k]) {
+        EXPECT_GE(v, -1e-9 * total);
+        sum += v;
+      }
+      EXPECT_NEAR(sum / total, 1.0, 1e-9) << "T_a = " << ta << ", t = " << o.times_s[k];
+    }
+    // Without the budget flag the prediction is the same and the budget empty.
+    o.budget = false;
+    const DriftPrediction plain = predict_stationary_drift(noise, o);
+    EXPECT_TRUE(plain.horizontal_variance_budget_m2.empty());
+    EXPECT_EQ(plain.horizontal_drms_m, p.horizontal_drms_m);
+  }
+  // A single source lands in its own column: VRW alone → white_noise; a heading σ alone
+  // without alignment → heading; a ramp alone → ramp.
+  const auto only = [](const InsSensorNoise& n, double heading_sigma, DriftBudgetTerm term) {
+    DriftPredictionOptions o;
+    o.heading_sigma_rad = heading_sigma;
+    o.times_s = {300.0};
+    o.budget = true;
+    const DriftPrediction p = predict_stationary_drift(n, o);
+    const double total = p.horizontal_drms_m[0] * p.horizontal_drms_m[0];
+    EXPECT_GT(total, 0.0) << name_of(term);
+    EXPECT_NEAR(p.horizontal_variance_budget_m2[0][static_cast<std::size_t>(term)] / total, 1.0,
+                1e-9)
+        << name_of(term);
+  };
+  InsSensorNoise vrw, ramp;
+  for (auto& a : vrw.accel) a.white_noise = 1.47e-3;
+  ramp.gyro[1].ramp = 1e-8;
+  only(vrw, 0.0, DriftBudgetTerm::white_noise);
+  only(InsSensorNoise{}, 1.0 * kDeg, DriftBudgetTerm::heading);
+  only(ramp, 0.0, DriftBudgetTerm::ramp);
+}
+
 }  // namespace
 }  // namespace imunoise::ins

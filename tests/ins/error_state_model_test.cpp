@@ -634,5 +634,61 @@ TEST(InsErrorStateModel, RejectsBadInput) {
       [] { stationary_nominal(0.1, 0.0, std::numeric_limits<double>::infinity()); }, "heading");
 }
 
+TEST(InsErrorStateModel, GmTermsAndRampsAreAppendedAxisStates) {
+  // gyro y: two GM terms (one with σ = 0: no state) and a ramp; accel z: one GM term. The
+  // blocks of the base layout keep their offsets; the new states follow, gyro before accel.
+  InsSensorNoise noise;
+  noise.gyro[1].gm_terms = {{3e-5, 20.0}, {0.0, 5.0}, {2e-5, 2000.0}};
+  noise.gyro[1].ramp = 1e-8;
+  noise.accel[2].gm_terms = {{4e-4, 60.0}};
+  const ErrorStateOptions options = options_of(BiasModel::both, false);
+  const ErrorStateLayout base = error_state_layout(options);
+  const ErrorStateLayout L = error_state_layout(options, noise);
+  EXPECT_EQ(L.accel_bias_gm, base.accel_bias_gm);
+  EXPECT_EQ(L.gyro_bias_gm_noise, base.gyro_bias_gm_noise);
+  ASSERT_EQ(L.axis_states.size(), 4u);
+  EXPECT_EQ(L.states, base.states + 4);
+  EXPECT_EQ(L.noises, L.states - 3);
+  const NominalState nominal = stationary_nominal(kLat45, 0.0, 0.4);
+  const auto model = ins_error_state_model(nominal, noise, options);
+  ASSERT_EQ(model.states(), L.states);
+  const std::array<std::pair<int, double>, 2> gyro_terms{{{0, 20.0}, {2, 2000.0}}};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const AxisState& x = L.axis_states[k];
+    EXPECT_EQ(x.kind, AxisState::Kind::gm_term);
+    EXPECT_TRUE(x.gyro);
+    EXPECT_EQ(x.axis, 1);
+    EXPECT_EQ(x.term, gyro_terms[k].first);
+    const double sigma = noise.gyro[1].gm_terms[static_cast<std::size_t>(x.term)].sigma;
+    const double tc = gyro_terms[k].second;
+    EXPECT_DOUBLE_EQ(model.F(x.state, x.state), -1.0 / tc);
+    EXPECT_DOUBLE_EQ(model.Qc(x.noise, x.noise), 2.0 * sigma * sigma / tc);
+    EXPECT_DOUBLE_EQ(model.initial_variance(x.state), sigma * sigma);
+    EXPECT_EQ(model.G(x.state, x.noise), 1.0);
+    // δψ̇ += C_bn b: the column of body y in NED.
+    const Eigen::Vector3d coupling = model.F.block<3, 1>(ErrorStateLayout::kAttitude, x.state);
+    EXPECT_TRUE(coupling.isApprox(nominal.C_bn.col(1), 1e-15));
+  }
+  const AxisState& ramp = L.axis_states[2];
+  EXPECT_EQ(ramp.kind, AxisState::Kind::ramp_slope);
+  EXPECT_EQ(model.F(ErrorStateLayout::kGyroBias + 1, ramp.state), 1.0);  // ḃ_RW += s
+  EXPECT_EQ(model.F.col(ramp.state).sum(), 1.0);
+  EXPECT_EQ(model.Qc(ramp.noise, ramp.noise), 0.0);
+  EXPECT_DOUBLE_EQ(model.initial_variance(ramp.state), 1e-16);
+  const AxisState& accel = L.axis_states[3];
+  EXPECT_FALSE(accel.gyro);
+  EXPECT_EQ(accel.axis, 2);
+  const Eigen::Vector3d coupling = model.F.block<3, 1>(ErrorStateLayout::kVelocity, accel.state);
+  EXPECT_TRUE(coupling.isApprox(nominal.C_bn.col(2), 1e-15));
+  // gauss_markov mode: no RW state to integrate a slope, so no ramp state.
+  EXPECT_EQ(
+      error_state_layout(options_of(BiasModel::gauss_markov, false), noise).axis_states.size(), 3u);
+  // A bad term names its field.
+  InsSensorNoise bad;
+  bad.accel[0].gm_terms = {{1e-4, 0.0}};
+  test::expect_throw_containing<InputError>([&] { ins_error_state_model(nominal, bad, options); },
+                                            "accel[x].gm_terms[0].tau_c_s");
+}
+
 }  // namespace
 }  // namespace imunoise::ins

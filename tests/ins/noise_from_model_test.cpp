@@ -125,5 +125,37 @@ TEST(InsSensorNoise, NeedsThreeGyroAndThreeAccelAxes) {
                                             "sample_rate_hz must be > 0");
 }
 
+TEST(InsSensorNoise, ModelTermsAsStatesCarriesMultiGmFittedGmAndRamp) {
+  // gyro_x: B with multi_gm → the multi_gm terms, no single GM; gyro_y: no B, two fitted GMs →
+  // both as gm_terms; accel_x: B without multi_gm → the single-GM fallback (named by
+  // single_gm_fallback_axes); accel_z: a ramp.
+  models::NoiseModel m = six_axis_model();
+  m.axes[2].multi_gm = {{1.0e-4, 3.0}, {9.0e-5, 30.0}, {8.0e-5, 300.0}};
+  m.axes[0].terms[static_cast<int>(NoiseTerm::ramp)] = estimate(2e-7, 3e-7);
+  InsNoiseOptions o;
+  o.model_terms_as_states = true;
+  const InsSensorNoise noise = ins_sensor_noise(m, o);
+  EXPECT_EQ(noise.gyro[0].bias_gm.sigma, 0.0);
+  ASSERT_EQ(noise.gyro[0].gm_terms.size(), 3u);
+  EXPECT_EQ(noise.gyro[0].gm_terms[1].sigma, 9.0e-5);
+  EXPECT_EQ(noise.gyro[0].gm_terms[1].tau_c_s, 30.0);
+  EXPECT_EQ(noise.gyro[0].white_noise, kN);
+  EXPECT_EQ(noise.gyro[0].random_walk, kK);
+  EXPECT_EQ(noise.gyro[1].bias_gm.sigma, 0.0);
+  ASSERT_EQ(noise.gyro[1].gm_terms.size(), 2u);
+  EXPECT_EQ(noise.gyro[1].gm_terms[0].sigma, 2.0e-5);
+  EXPECT_EQ(noise.gyro[1].gm_terms[1].tau_c_s, 300.0);
+  // The fallback is the same single GM as without the option.
+  const InsSensorNoise single = ins_sensor_noise(m, InsNoiseOptions{});
+  EXPECT_GT(noise.accel[0].bias_gm.sigma, 0.0);
+  EXPECT_EQ(noise.accel[0].bias_gm.sigma, single.accel[0].bias_gm.sigma);
+  EXPECT_EQ(noise.accel[0].bias_gm.tau_c_s, single.accel[0].bias_gm.tau_c_s);
+  EXPECT_TRUE(noise.accel[0].gm_terms.empty());
+  EXPECT_EQ(noise.accel[2].ramp, 2e-7);
+  EXPECT_EQ(single.accel[2].ramp, 0.0);
+  EXPECT_TRUE(single.gyro[0].gm_terms.empty());
+  EXPECT_EQ(single_gm_fallback_axes(m), std::vector<std::string>{"accel_x"});
+}
+
 }  // namespace
 }  // namespace imunoise::ins

@@ -198,7 +198,7 @@ DriftSummary summary(bool monte_carlo) {
   s.recording = "/data/rec.csv";
   s.model = "out/model.yaml";
   s.location = {45.5, 7.25, 300.0, true};
-  s.protocol = {60.0, 600.0, 5.0, 43, "height hold", "removed", "given heading", "peak_match"};
+  s.protocol = {60.0, 600.0, 5.0, 43, "height hold", "removed", "given heading", "peak_match", ""};
   s.motion.stationary = false;
   s.motion.reason = "the IMU tilts by 3 deg";
   s.motion.max_gyro_std_ratio = 1.25;
@@ -228,9 +228,26 @@ DriftSummary summary(bool monte_carlo) {
     }
     s.consistency.push_back(c);
   }
-  if (monte_carlo) s.monte_carlo = pipeline::DriftMonteCarlo{100, 18446744073709551615ULL};
+  s.protocol.bias_states = "multi_gm: 31 states";
+  if (monte_carlo) {
+    s.monte_carlo = pipeline::DriftMonteCarlo{100, 18446744073709551615ULL};
+    pipeline::DriftHoldout h;
+    h.fitted_on = "first half: samples 0 ... 9";
+    h.judged_on = "second half: samples 10 ... 19";
+    h.segments = 21;
+    h.consistency = s.consistency;
+    for (auto& c : h.consistency) {
+      c.monte_carlo_radial_rms_m.reset();
+      c.monte_carlo_radial_p95_m.reset();
+      c.mean_nees *= 1.5;
+    }
+    s.holdout = h;
+  }
   return s;
 }
+
+void expect_same_consistency(const std::vector<pipeline::DriftConsistency>& r,
+                             const std::vector<pipeline::DriftConsistency>& s);
 
 void expect_same_summary(const DriftSummary& r, const DriftSummary& s) {
   EXPECT_EQ(r.recording, s.recording);
@@ -257,10 +274,28 @@ void expect_same_summary(const DriftSummary& r, const DriftSummary& s) {
               kDegreeRoundTrip * s.motion.max_tilt_change_rad);
   EXPECT_NEAR(r.motion.max_rotation_rad_per_s, s.motion.max_rotation_rad_per_s,
               kDegreeRoundTrip * s.motion.max_rotation_rad_per_s);
-  ASSERT_EQ(r.consistency.size(), s.consistency.size());
-  for (std::size_t i = 0; i < r.consistency.size(); ++i) {
-    const auto& a = r.consistency[i];
-    const auto& b = s.consistency[i];
+  EXPECT_EQ(r.protocol.bias_states, s.protocol.bias_states);
+  expect_same_consistency(r.consistency, s.consistency);
+  ASSERT_EQ(r.holdout.has_value(), s.holdout.has_value());
+  if (s.holdout) {
+    EXPECT_EQ(r.holdout->fitted_on, s.holdout->fitted_on);
+    EXPECT_EQ(r.holdout->judged_on, s.holdout->judged_on);
+    EXPECT_EQ(r.holdout->segments, s.holdout->segments);
+    expect_same_consistency(r.holdout->consistency, s.holdout->consistency);
+  }
+  ASSERT_EQ(r.monte_carlo.has_value(), s.monte_carlo.has_value());
+  if (s.monte_carlo) {
+    EXPECT_EQ(r.monte_carlo->runs, s.monte_carlo->runs);
+    EXPECT_EQ(r.monte_carlo->seed, s.monte_carlo->seed);
+  }
+}
+
+void expect_same_consistency(const std::vector<pipeline::DriftConsistency>& rc,
+                             const std::vector<pipeline::DriftConsistency>& sc) {
+  ASSERT_EQ(rc.size(), sc.size());
+  for (std::size_t i = 0; i < rc.size(); ++i) {
+    const auto& a = rc[i];
+    const auto& b = sc[i];
     EXPECT_EQ(a.time_s, b.time_s);
     EXPECT_EQ(a.predicted_north_sigma_m, b.predicted_north_sigma_m);
     EXPECT_EQ(a.predicted_east_sigma_m, b.predicted_east_sigma_m);
@@ -281,11 +316,6 @@ void expect_same_summary(const DriftSummary& r, const DriftSummary& s) {
     }
     EXPECT_EQ(a.monte_carlo_radial_rms_m, b.monte_carlo_radial_rms_m);
     EXPECT_EQ(a.monte_carlo_radial_p95_m, b.monte_carlo_radial_p95_m);
-  }
-  ASSERT_EQ(r.monte_carlo.has_value(), s.monte_carlo.has_value());
-  if (s.monte_carlo) {
-    EXPECT_EQ(r.monte_carlo->runs, s.monte_carlo->runs);
-    EXPECT_EQ(r.monte_carlo->seed, s.monte_carlo->seed);
   }
 }
 
@@ -316,6 +346,31 @@ TEST(DriftSummaryJson, ARenamedKeyIsAnErrorThatNamesIt) {
       std::string::npos);
   test::write_text(path, "{");
   EXPECT_NE(error_of([&] { read_drift_summary_json(path.string()); }).find("not valid JSON"),
+            std::string::npos);
+}
+
+TEST(DriftBudgetCsv, RoundTripsEveryColumn) {
+  pipeline::DriftBudget b;
+  b.time_s = {60.0, 300.0};
+  b.variance_m2 = {{1.0, 2.5, 3e-7, 0.0, 1.0 / 3.0, 4e12}, {5.0, 6.0, 7.0, 8.0, 9.0, 10.0}};
+  b.predicted_variance_m2 = {4e12 + 6.5, 45.0};
+  const auto dir = test::make_temp_dir("drift-budget");
+  const std::string path = (dir / "drift_budget.csv").string();
+  write_drift_budget_csv(path, b);
+  const std::string text = test::read_file_bytes(path);
+  EXPECT_EQ(text, format_drift_budget_csv(b));
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "time_s,white_noise_variance_m2,bias_instability_variance_m2,"
+            "random_walk_variance_m2,ramp_variance_m2,alignment_variance_m2,"
+            "heading_variance_m2,predicted_horizontal_variance_m2");
+  const pipeline::DriftBudget r = read_drift_budget_csv(path);
+  EXPECT_EQ(r.time_s, b.time_s);
+  EXPECT_EQ(r.variance_m2, b.variance_m2);
+  EXPECT_EQ(r.predicted_variance_m2, b.predicted_variance_m2);
+  std::string renamed = text;
+  renamed.replace(renamed.find("ramp_variance_m2"), 4, "rmp_");
+  test::write_text(dir / "drift_budget.csv", renamed);
+  EXPECT_NE(error_of([&] { read_drift_budget_csv(path); }).find("ramp_variance_m2"),
             std::string::npos);
 }
 

@@ -30,6 +30,7 @@ using models::Estimate;
 using models::GaussMarkovEstimate;
 using models::NoiseModel;
 using models::ReadoffValues;
+using models::SinusoidEstimate;
 using test::expect_throw_containing;
 using namespace std::string_literals;
 
@@ -56,6 +57,13 @@ void expect_same(const Sinusoid& a, const Sinusoid& b, const std::string& at) {
   expect_bits(amplitude, b.amplitude, at + ".amplitude");
   expect_bits(frequency_hz, b.frequency_hz, at + ".frequency_hz");
   expect_bits(phase_rad, b.phase_rad, at + ".phase_rad");
+}
+
+void expect_same(const SinusoidEstimate& a, const SinusoidEstimate& b, const std::string& at) {
+  const auto& [value, amplitude_ci_low, amplitude_ci_high] = a;
+  expect_same(value, b.value, at);
+  expect_bits(amplitude_ci_low, b.amplitude_ci_low, at + ".amplitude_ci_low");
+  expect_bits(amplitude_ci_high, b.amplitude_ci_high, at + ".amplitude_ci_high");
 }
 
 void expect_same(const Estimate& a, const Estimate& b, const std::string& at) {
@@ -195,7 +203,8 @@ NoiseModel awkward_model() {
                 estimate(0.0, 0.0, 0.0, true, "", "")};
   gyro.gauss_markov = {{{kThird, 100.0}, 0.0, 1.0, kTiny, kHuge},
                        {{2.5e-5, 1e-300}, 2.5e-5, 2.5e-5, 1e-300, 1e-299}};
-  gyro.sinusoids = {{-1e-3, 0.5, -0.0}, {kSum, 1e-300, -3.141592653589793}};
+  gyro.sinusoids = {{{-1e-3, 0.5, -0.0}, -2e-3, 0.0},
+                    {{kSum, 1e-300, -3.141592653589793}, kTiny, kHuge}};
   gyro.bias_instability_gm = {{"min_adev_at_tau_min", {1e-5, 29.6}},
                               {"peak_match", {kThird, 15.638}},
                               {s[2], {0.0, kHuge}}};
@@ -218,7 +227,7 @@ NoiseModel awkward_model() {
                               t % 2 == 0, s[8 + t], s[13 - t]);
   }
   accel.gauss_markov = {{{9.80665e-6, 3600.0}, 1e-6, 2e-5, 1800.0, 7200.0}};
-  accel.sinusoids = {{kThird, 49.99, 1.0}};
+  accel.sinusoids = {{{kThird, 49.99, 1.0}, 0.0, 1.0}};
   accel.bias_instability_gm = {{"sigma_equals_b", {kSum, kThird}}};
   accel.multi_gm = {};
   accel.multi_gm_fraction_inside_ci = 0.5;  // written even though multi_gm is empty
@@ -344,7 +353,8 @@ TEST(NoiseModelYaml, FormatIsDeterministicCommentedAndNamesUnits) {
   EXPECT_NE(text.find("    white_noise_m_per_s_sqrt_s: {"), std::string::npos);
   EXPECT_NE(text.find("# N (VRW)\n"), std::string::npos);
   EXPECT_NE(text.find("{sigma_m_per_s2: 9.80665e-06, tau_c_s: 3600, "), std::string::npos);
-  EXPECT_NE(text.find("{amplitude_rad_per_s: -0.001, frequency_hz: 0.5, phase_rad: -0}"),
+  EXPECT_NE(text.find("{amplitude_rad_per_s: -0.001, frequency_hz: 0.5, phase_rad: -0, "
+                      "amplitude_ci_low_rad_per_s: -0.002, amplitude_ci_high_rad_per_s: 0}"),
             std::string::npos);
   // Names that are not simple identifiers are quoted; "null" would otherwise be a null key.
   EXPECT_NE(text.find("\n  gyro_x:\n"), std::string::npos);
@@ -486,7 +496,10 @@ TEST(NoiseModelYaml, PartialEntriesTakeTheirDefaults) {
   EXPECT_EQ(gyro.gauss_markov[0].tau_c_ci_low_s, 100.0);
   EXPECT_EQ(gyro.gauss_markov[0].tau_c_ci_high_s, 100.0);
   ASSERT_EQ(gyro.sinusoids.size(), 1U);
-  EXPECT_EQ(gyro.sinusoids[0].phase_rad, 0.0);
+  EXPECT_EQ(gyro.sinusoids[0].value.phase_rad, 0.0);
+  // Files written before the amplitude interval: an empty interval at the amplitude.
+  EXPECT_EQ(gyro.sinusoids[0].amplitude_ci_low, 1e-4);
+  EXPECT_EQ(gyro.sinusoids[0].amplitude_ci_high, 1e-4);
   ASSERT_EQ(gyro.multi_gm.size(), 1U);
   EXPECT_EQ(gyro.multi_gm[0].tau_c_s, 9.0);
   EXPECT_EQ(gyro.multi_gm_fraction_inside_ci, 0.0);

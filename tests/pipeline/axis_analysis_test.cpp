@@ -130,8 +130,36 @@ TEST(AxisAnalysis, CandidateSinusoidIsFittedWithItsAmplitude) {
   options.fit.sinusoid_frequencies_hz = {0.1};
   const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
   ASSERT_EQ(a.model.sinusoids.size(), 1u);
-  EXPECT_NEAR(std::abs(a.model.sinusoids[0].amplitude) / 1e-3, 1.0, 0.1);
+  EXPECT_NEAR(std::abs(a.model.sinusoids[0].value.amplitude) / 1e-3, 1.0, 0.1);
   EXPECT_NEAR(a.model.terms[1].value / truth.white_noise, 1.0, 0.05);
+}
+
+// Without a candidate the line is found in the PSD, fitted on the samples and removed before
+// the deviations. Its amplitude sd is √(C/T) = √(2N²/T) = 2.4e-5 (2.4 % of A): the estimate
+// within 4 sd, the 95 % interval 2·1.96 sd wide; the frequency within 1/(4T) (its sd is
+// ~√6·σ_A/(π·A·T) ≈ 2e-6 Hz). With the line gone the white-noise fit is that of white noise.
+TEST(AxisAnalysis, LineIsFoundFittedAndRemovedWithoutACandidate) {
+  NoiseCoefficients truth;
+  truth.white_noise = 1e-3;
+  truth.sinusoids.push_back({1e-3, 0.1, 0.3});
+  const double duration_s = 3600.0;
+  const std::vector<double> rate = simulate(truth, 50.0, duration_s, 9);
+  AxisAnalysisOptions options;
+  options.bootstrap_replicates = 0;
+  const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options);
+  ASSERT_EQ(a.model.sinusoids.size(), 1u);
+  const models::SinusoidEstimate& line = a.model.sinusoids[0];
+  const double sd = std::sqrt(2.0 * 1e-6 / duration_s);
+  EXPECT_NEAR(line.value.amplitude, 1e-3, 4.0 * sd);
+  EXPECT_NEAR(line.amplitude_ci_high - line.amplitude_ci_low, 2.0 * 1.959964 * sd, 0.2 * sd);
+  EXPECT_NEAR(line.value.frequency_hz, 0.1, 0.25 / duration_s);
+  EXPECT_NE(a.model.fit_note.find("1 spectral line found"), std::string::npos) << a.model.fit_note;
+  EXPECT_NEAR(a.model.terms[1].value / truth.white_noise, 1.0, 0.05);
+  EXPECT_FALSE(a.model.terms[2].identified);  // the line's AVAR hump is not read as B
+  // --no-lines: nothing searched, nothing fitted.
+  options.find_lines = false;
+  EXPECT_TRUE(
+      analyze_axis("gyro_x", SensorKind::gyro, rate, 0.02, 0, options).model.sinusoids.empty());
 }
 
 TEST(AxisAnalysis, BadRecordsGiveClearErrors) {

@@ -211,5 +211,57 @@ TEST(DriftRun, ProgressReportsTheSegmentsThenTheMonteCarlo) {
   EXPECT_EQ(stages, (std::vector<std::string>{"segments", "Monte Carlo"}));
 }
 
+TEST(DriftRun, BudgetRowsSumToThePredictedVarianceAtTheReportTimes) {
+  const DriftResult r = run_drift(simulated_recording(200.0), fitted_model(), options());
+  ASSERT_EQ(r.budget.time_s.size(), r.summary.consistency.size());
+  for (std::size_t k = 0; k < r.budget.time_s.size(); ++k) {
+    const double drms = r.summary.consistency[k].predicted_drms_m;
+    EXPECT_EQ(r.budget.time_s[k], r.summary.consistency[k].time_s);
+    EXPECT_DOUBLE_EQ(r.budget.predicted_variance_m2[k], drms * drms);
+    double sum = 0.0;
+    for (const double v : r.budget.variance_m2[k]) sum += v;
+    EXPECT_NEAR(sum / (drms * drms), 1.0, 1e-9);
+    // White + RW model, heading given exactly: no ramp, no heading, no B contribution.
+    EXPECT_EQ(r.budget.variance_m2[k][static_cast<std::size_t>(ins::DriftBudgetTerm::ramp)], 0.0);
+    EXPECT_EQ(r.budget.variance_m2[k][static_cast<std::size_t>(ins::DriftBudgetTerm::heading)],
+              0.0);
+  }
+}
+
+TEST(DriftRun, HoldoutFitsTheFirstHalfAndJudgesTheSecond) {
+  // 600 s at 20 Hz, segments of 10 + 20 s: 10 per half. The first half is fitted by
+  // analyze_recording() (its defaults, bootstrap included); its prediction must be close to
+  // that of the true model: at 20 s the variance is ≥ 90 % gyro white noise (g·N_g t^{5/2}
+  // /√20 and its alignment residual g·(N_g/√T_a)·t³/6), whose fitted N has a relative σ of
+  // ~1/√(2·3000) ≈ 1.3 % from 6000 samples; 15 % leaves room for K, which 300 s cannot pin
+  // down, at its ≤ 10 % share. The segments judged are the 10 of the second half.
+  const Recording recording = simulated_recording(600.0);
+  DriftRunOptions o = options();
+  o.monte_carlo_runs = 0;
+  o.holdout_half = true;
+  o.holdout_analysis.axis.bootstrap_replicates = 20;
+  const DriftResult r = run_drift(recording, fitted_model(), o);
+  ASSERT_TRUE(r.summary.holdout.has_value());
+  const DriftHoldout& h = *r.summary.holdout;
+  EXPECT_EQ(h.segments, 10u);
+  EXPECT_EQ(r.summary.protocol.segments, 20u);
+  EXPECT_NE(h.fitted_on.find("first half: samples 0 ... 5999"), std::string::npos) << h.fitted_on;
+  EXPECT_NE(h.judged_on.find("second half: samples 6000 ... 11999"), std::string::npos)
+      << h.judged_on;
+  ASSERT_EQ(h.consistency.size(), r.summary.consistency.size());
+  for (std::size_t k = 0; k < h.consistency.size(); ++k) {
+    const DriftConsistency& held = h.consistency[k];
+    const DriftConsistency& same = r.summary.consistency[k];
+    EXPECT_EQ(held.time_s, same.time_s);
+    EXPECT_NEAR(held.predicted_drms_m / same.predicted_drms_m, 1.0, 0.15) << held.time_s;
+    EXPECT_FALSE(held.monte_carlo_radial_rms_m.has_value());
+    EXPECT_GT(held.actual_rms_m, 0.0);
+    // The band is that of M = 10 segments: χ²_{20} 2.5 % quantile 9.591 (printed tables) / 10.
+    EXPECT_NEAR(held.nees_band_low, 0.9591, 1e-4);
+  }
+  o.holdout_half = false;
+  EXPECT_FALSE(run_drift(recording, fitted_model(), o).summary.holdout.has_value());
+}
+
 }  // namespace
 }  // namespace imunoise::pipeline

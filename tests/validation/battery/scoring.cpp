@@ -108,13 +108,14 @@ void score_channel(const BatteryCase& c, const ChannelTruth& t, const models::Ax
     rows.push_back(tau);
   }
   extra.false_gm = static_cast<int>(std::count(gm_used.begin(), gm_used.end(), false));
-  // Lines: match by frequency within max(2 %, 2/T); model.yaml gives no interval.
+  // Lines: match by frequency within max(2 %, 2/T); the amplitude interval is model.yaml's
+  // amplitude_ci_low/high (a file without them reads as an empty interval at the amplitude).
   std::vector<bool> line_used(axis ? axis->sinusoids.size() : 0, false);
   for (const TruthLine& l : t.lines) {
     std::optional<std::size_t> best;
     double best_distance = std::max(0.02 * l.frequency_hz, 2.0 / length);
     for (std::size_t j = 0; j < line_used.size(); ++j) {
-      const double distance = std::abs(axis->sinusoids[j].frequency_hz - l.frequency_hz);
+      const double distance = std::abs(axis->sinusoids[j].value.frequency_hz - l.frequency_hz);
       if (!line_used[j] && distance <= best_distance) {
         best = j;
         best_distance = distance;
@@ -129,8 +130,13 @@ void score_channel(const BatteryCase& c, const ChannelTruth& t, const models::Ax
     r.psd_pass = psd_pass;
     if (best) {
       line_used[*best] = true;
+      const models::SinusoidEstimate& e = axis->sinusoids[*best];
       r.identified = true;
-      r.estimate = std::abs(axis->sinusoids[*best].amplitude);
+      r.estimate = std::abs(e.value.amplitude);
+      r.ci_low = e.amplitude_ci_low;
+      r.ci_high = e.amplitude_ci_high;
+      r.has_interval = r.ci_high > r.ci_low;
+      r.covered = r.has_interval && r.ci_low <= l.amplitude && l.amplitude <= r.ci_high;
     }
     rows.push_back(r);
   }
