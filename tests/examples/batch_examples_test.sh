@@ -3,8 +3,8 @@
 # analysed by tools/examples/batch_parallel.sh under GNU parallel into one directory per unit,
 # fed to `imunoise fleet`; a second run skips every complete unit; a unit removed and a stale
 # .partial left by a killed run are redone alone. Then tools/examples/batch_slurm.sbatch run the
-# way Slurm runs an array job — once per SLURM_ARRAY_TASK_ID (no Slurm daemon here; see
-# docs/batch.md) — gives the same three units.
+# way Slurm runs an array job — once per SLURM_ARRAY_TASK_ID, by hand (under a real Slurm:
+# tests/examples/slurm_array_test.sh) — gives the same three units.
 #   batch_examples_test.sh IMUNOISE_BINARY SOURCE_DIR
 # Exit: 0 pass, 1 fail, 77 skipped (GNU parallel not installed).
 set -uo pipefail
