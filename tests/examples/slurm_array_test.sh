@@ -12,7 +12,7 @@
 set -uo pipefail
 BIN="$1"
 SRC="$2"
-LIFETIME=100 # s: hard limit of every daemon (the test takes ~10 s, at most ~60; ctest's TIMEOUT: 150)
+LIFETIME=100 # s, hard limit of every daemon: the test takes ~10 s, ~60 at most; ctest TIMEOUT 150
 skip() {
   echo "SKIPPED: $*"
   exit 77
@@ -125,7 +125,8 @@ EOF
   PIDS+=($!)
   local until=$((SECONDS + 5))
   while [ ! -S "$WORK/munge/socket" ] && [ $SECONDS -lt $until ]; do sleep 0.1; done
-  timeout -k 5 "$LIFETIME" slurmctld -D -f "$SLURM_CONF" </dev/null >"$WORK/log/slurmctld.out" 2>&1 &
+  timeout -k 5 "$LIFETIME" slurmctld -D -f "$SLURM_CONF" \
+    </dev/null >"$WORK/log/slurmctld.out" 2>&1 &
   PIDS+=($!)
   timeout -k 5 "$LIFETIME" slurmd -D -f "$SLURM_CONF" -N localhost \
     </dev/null >"$WORK/log/slurmd.out" 2>&1 &
@@ -141,7 +142,7 @@ dd if=/dev/urandom of="$WORK/munge/key" bs=1024 count=1 2>/dev/null
 chmod 600 "$WORK/munge/key"
 t0=$SECONDS
 started=0
-for attempt in 1 2 3; do
+for _ in 1 2 3; do
   if start_cluster; then
     started=1
     break
@@ -150,12 +151,15 @@ for attempt in 1 2 3; do
   # Another program took a port between the check and the bind: try other ports.
   grep -qs 'Address already in use' "$WORK"/log/slurm*.log "$WORK"/log/slurm*.out || break
 done
+benign='pmix|MPI:|state file|NOTE: Trying backup' # see docs/batch.md
 if [ $started -eq 0 ]; then
   why="$(grep -h -i -E 'fatal|error' "$WORK"/log/*.log "$WORK"/log/*.out 2>/dev/null |
-    grep -v -E 'pmix|MPI:|state file|NOTE: Trying backup' | tail -n 6)"
-  skip "a single-node Slurm (munged, slurmctld, slurmd) did not start here within 20 s: ${why:-no error logged}"
+    grep -v -E "$benign" | tail -n 6)"
+  skip "a single-node Slurm (munged, slurmctld, slurmd) did not start here within 20 s:" \
+    "${why:-no error logged}"
 fi
-echo "ok: single-node Slurm $(sinfo -V | cut -d' ' -f2) up in $((SECONDS - t0)) s ($cpus CPUs, munge)"
+echo "ok: single-node Slurm $(sinfo -V | cut -d' ' -f2) up in $((SECONDS - t0)) s" \
+  "($cpus CPUs, munge)"
 
 # --- the array job, as docs/batch.md submits it ---
 FAILURES=0
@@ -165,15 +169,22 @@ fail() {
 }
 ok() { echo "ok: $*"; }
 out="$WORK/out"
+log="$WORK/log"
 submit() { # the array over the 3 recordings, then fleet after it; sets JID and FJID
   # 1 CPU and 200 MB per task (the script asks 2 CPUs and 4 GB): 2 tasks at once on 2 cores.
-  JID="$(cd "$SRC" && sbatch --parsable --array=0-2 --cpus-per-task=1 --mem=200M \
-    --output="$WORK/log/%A_%a.out" tools/examples/batch_slurm.sbatch "$WORK/recs" "$out" \
-    --bootstrap 0 2>"$WORK/log/sbatch.err")" || { fail "sbatch: $(cat "$WORK/log/sbatch.err")"; return 1; }
+  if ! JID="$(cd "$SRC" && sbatch --parsable --array=0-2 --cpus-per-task=1 --mem=200M \
+    --output="$log/%A_%a.out" tools/examples/batch_slurm.sbatch "$WORK/recs" "$out" \
+    --bootstrap 0 2>"$log/sbatch.err")"; then
+    fail "sbatch: $(cat "$log/sbatch.err")"
+    return 1
+  fi
   JOBS+=("$JID")
-  FJID="$(sbatch --parsable --dependency="afterany:$JID" --mem=200M --output="$WORK/log/fleet_%j.out" \
-    --wrap "\"$BIN\" fleet \"$out\"/*/model.yaml -o \"$out/fleet\"" 2>"$WORK/log/sbatch.err")" ||
-    { fail "sbatch fleet: $(cat "$WORK/log/sbatch.err")"; return 1; }
+  if ! FJID="$(sbatch --parsable --dependency="afterany:$JID" --mem=200M \
+    --output="$log/fleet_%j.out" --wrap "\"$BIN\" fleet \"$out\"/*/model.yaml -o \"$out/fleet\"" \
+    2>"$log/sbatch.err")"; then
+    fail "sbatch fleet: $(cat "$log/sbatch.err")"
+    return 1
+  fi
   JOBS+=("$FJID")
 }
 wait_jobs() { # JOBID... : 0 when none is pending or running any more, 1 after 40 s
@@ -185,23 +196,37 @@ wait_jobs() { # JOBID... : 0 when none is pending or running any more, 1 after 4
   done
   return 1
 }
-states() { scontrol -o show job "$1" 2>/dev/null | grep -o -E '(JobState|ExitCode)=[^ ]+' | paste -sd' '; }
-fleet_units() { tail -n +2 "$out/fleet/fleet.csv" 2>/dev/null | cut -d, -f1 | sort -u | paste -sd' '; }
+states() { # JobState=… ExitCode=… of each element of job $1
+  scontrol -o show job "$1" 2>/dev/null | grep -o -E '(JobState|ExitCode)=[^ ]+' | paste -sd' '
+}
+fleet_units() {
+  tail -n +2 "$out/fleet/fleet.csv" 2>/dev/null | cut -d, -f1 | sort -u | paste -sd' '
+}
+DONE0="JobState=COMPLETED ExitCode=0:0"
+check_fleet() { # $1: what this fleet run is
+  if [ "$(states "$FJID")" = "$DONE0" ] && [ "$(fleet_units)" = "unit1 unit2 unit3" ] &&
+    [ -s "$out/fleet/fleet.html" ]; then
+    ok "$1: fleet.csv holds unit1 unit2 unit3"
+  else
+    fail "$1 (job $FJID): $(states "$FJID"); units '$(fleet_units)'; $(cat "$log/fleet_$FJID.out")"
+  fi
+}
 
 t1=$SECONDS
 if submit; then
   wait_jobs "$JID" "$FJID" || fail "the jobs did not finish within 40 s: $(squeue -h 2>&1)"
   s="$(states "$JID")"
-  [ "$(grep -o 'JobState=COMPLETED ExitCode=0:0' <<<"$s" | wc -l)" -eq 3 ] &&
-    ok "array job $JID: 3 tasks COMPLETED, exit 0, in $((SECONDS - t1)) s" || fail "array job $JID: $s"
+  if [ "$(grep -o "$DONE0" <<<"$s" | wc -l)" -eq 3 ]; then
+    ok "array job $JID: 3 tasks COMPLETED, exit 0, in $((SECONDS - t1)) s"
+  else
+    fail "array job $JID: $s"
+  fi
   for i in 0 1 2; do
     u=$((i + 1))
-    grep -qx "done unit$u" "$WORK/log/${JID}_$i.out" 2>/dev/null && [ -s "$out/unit$u/model.yaml" ] &&
-      [ -s "$out/unit$u/report.html" ] || fail "task $i: $(cat "$WORK/log/${JID}_$i.out" 2>&1)"
+    grep -qx "done unit$u" "$log/${JID}_$i.out" 2>/dev/null && [ -s "$out/unit$u/model.yaml" ] &&
+      [ -s "$out/unit$u/report.html" ] || fail "task $i: $(cat "$log/${JID}_$i.out" 2>&1)"
   done
-  [ "$(states "$FJID")" = "JobState=COMPLETED ExitCode=0:0" ] && [ "$(fleet_units)" = "unit1 unit2 unit3" ] &&
-    [ -s "$out/fleet/fleet.html" ] && ok "the fleet job after the array: fleet.csv holds unit1 unit2 unit3" ||
-    fail "fleet job $FJID: $(states "$FJID"); units '$(fleet_units)'; $(cat "$WORK/log/fleet_$FJID.out" 2>&1)"
+  check_fleet "the fleet job after the array"
 fi
 
 # --- resubmitted after a lost unit: only that unit is redone, fleet runs again ---
@@ -211,23 +236,26 @@ if [ $FAILURES -eq 0 ]; then
   t1=$SECONDS
   if submit; then
     wait_jobs "$JID" "$FJID" || fail "the resubmitted jobs did not finish within 40 s"
-    grep -qx 'skip unit1: .*' "$WORK/log/${JID}_0.out" && grep -qx 'done unit2' "$WORK/log/${JID}_1.out" &&
-      grep -qx 'skip unit3: .*' "$WORK/log/${JID}_2.out" && [ "$(stat -c %Y "$out/unit1/model.yaml")" = "$before" ] &&
-      ok "resubmitted array $JID redoes only unit2 ($((SECONDS - t1)) s)" ||
-      fail "resubmission: $(cat "$WORK/log/${JID}"_*.out 2>&1)"
-    [ "$(states "$FJID")" = "JobState=COMPLETED ExitCode=0:0" ] && [ "$(fleet_units)" = "unit1 unit2 unit3" ] &&
-      ok "fleet reruns over the complete units (out/fleet/ itself is not a unit)" ||
-      fail "second fleet job $FJID: $(states "$FJID"); $(cat "$WORK/log/fleet_$FJID.out" 2>&1)"
+    if grep -qx 'skip unit1: .*' "$log/${JID}_0.out" && grep -qx 'done unit2' "$log/${JID}_1.out" &&
+      grep -qx 'skip unit3: .*' "$log/${JID}_2.out" &&
+      [ "$(stat -c %Y "$out/unit1/model.yaml")" = "$before" ]; then
+      ok "resubmitted array $JID redoes only unit2 ($((SECONDS - t1)) s)"
+    else
+      fail "resubmission: $(cat "$log/${JID}"_*.out 2>&1)"
+    fi
+    check_fleet "the second fleet job (out/fleet/ present, not taken for a unit)"
   fi
 fi
 
 if [ $FAILURES -gt 0 ]; then
   echo "--- slurmctld.log / slurmd.log (errors) ---"
-  grep -h -i -E 'error|fatal' "$WORK"/log/slurm*.log | grep -v -E 'pmix|MPI:|state file|NOTE: Trying' | tail -n 20
+  grep -h -i -E 'error|fatal' "$log"/slurm*.log | grep -v -E "$benign" | tail -n 20
 fi
 daemons=("${PIDS[@]}")
 stop_daemons
-for p in "${daemons[@]}"; do kill -0 "$p" 2>/dev/null && fail "daemon (timeout pid $p) survived the shutdown"; done
+for p in "${daemons[@]}"; do
+  kill -0 "$p" 2>/dev/null && fail "a daemon (timeout pid $p) survived the shutdown"
+done
 [ "$FAILURES" -eq 0 ] && { echo "PASSED ($SECONDS s)"; exit 0; }
 echo "$FAILURES check(s) failed"
 exit 1
