@@ -5,7 +5,8 @@
 # accounting — submits the array over three short simulated recordings from the repository root
 # as docs/batch.md says, and the `imunoise fleet` step as a job depending on it (afterany); then
 # removes one unit and resubmits both: only that unit is redone and fleet runs again. The
-# daemons are always stopped (trap; each also runs under `timeout`, so none outlives the test).
+# daemons are always stopped (trap; each also runs under `timeout 100`: none survives even a
+# SIGKILLed test for long).
 #   slurm_array_test.sh IMUNOISE_BINARY SOURCE_DIR
 # Exit: 0 pass, 1 fail, 77 skipped (Slurm or munge not installed, or the daemons cannot start
 # here: the SKIPPED line quotes their error lines).
