@@ -55,15 +55,17 @@ std::vector<pipeline::DriftSegment> read_drift_segments_csv(const std::string& p
 /// @}
 
 /// @name drift_budget.csv
-/// Columns `time_s`, then per source (ins::DriftBudgetTerm order) `<name>_variance_m2`
-/// (white_noise, bias_instability, random_walk, ramp, alignment, heading), then
-/// `predicted_horizontal_variance_m2`; one row per report time.
+/// Columns `time_s`, `report_time` (1 at a report time, else 0), then per source
+/// (ins::DriftBudgetTerm order) `<name>_variance_m2` (white_noise, bias_instability,
+/// random_walk, gauss_markov, ramp, alignment, heading), then
+/// `predicted_horizontal_variance_m2`; one row per time of pipeline::DriftBudget (the report
+/// times and a log-spaced grid).
 /// @{
 
 /// The text of drift_budget.csv. @throws ContractViolation when the vectors differ in length.
 std::string format_drift_budget_csv(const pipeline::DriftBudget& budget);
 void write_drift_budget_csv(const std::string& path, const pipeline::DriftBudget& budget);
-/// Reads PATH back; every column required, every cell filled.
+/// Reads PATH back; every column required, every cell filled, report_time 0 or 1.
 pipeline::DriftBudget read_drift_budget_csv(const std::string& path);
 /// @}
 
