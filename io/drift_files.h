@@ -1,10 +1,10 @@
 /// @file
-/// @brief The three result files of `imunoise drift`, each written and read back here over one
+/// @brief The four result files of `imunoise drift`, each written and read back here over one
 /// typed struct (pipeline/drift_series.h, pipeline/drift_run.h): drift_envelope.csv
-/// (DriftSeries), drift_segments.csv (DriftSegment per segment) and drift_summary.json
-/// (DriftSummary). Files hold human units where their column or key says so (deg); the structs
-/// are SI. Writes are atomic (io/atomic_output.h). Every reader checks the columns or keys it
-/// needs and reports a bad file as InputError "FILE[:LINE]: problem".
+/// (DriftSeries), drift_segments.csv (DriftSegment per segment), drift_summary.json
+/// (DriftSummary) and drift_budget.csv (DriftBudget). Files hold human units where their column or
+/// key says so (deg); the structs are SI. Writes are atomic (io/atomic_output.h). Every reader
+/// checks the columns or keys it needs and reports a bad file as InputError "FILE[:LINE]: problem".
 #pragma once
 
 #include <string>
