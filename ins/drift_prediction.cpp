@@ -233,8 +233,9 @@ InitialCovariance unaligned_initial_covariance(const models::ContinuousStateMode
   return out;
 }
 
-/// The budget group of each driving noise of the model of LAYOUT and BIAS.
-std::vector<DriftBudgetTerm> noise_groups(const ErrorStateLayout& layout) {
+/// The budget group of each driving noise of the model of LAYOUT and NOISE.
+std::vector<DriftBudgetTerm> noise_groups(const ErrorStateLayout& layout,
+                                          const InsSensorNoise& noise) {
   std::vector<DriftBudgetTerm> groups(static_cast<std::size_t>(layout.noises),
                                       DriftBudgetTerm::bias_instability);
   for (int i = 0; i < 3; ++i) {
@@ -243,10 +244,16 @@ std::vector<DriftBudgetTerm> noise_groups(const ErrorStateLayout& layout) {
     groups[Layout::kGyroBiasNoise + i] = DriftBudgetTerm::random_walk;
     groups[Layout::kAccelBiasNoise + i] = DriftBudgetTerm::random_walk;
   }
-  // GM noises (bias_gm, gm_terms) stay bias_instability; a ramp slope has no driving noise.
-  for (const AxisState& x : layout.axis_states)
-    if (x.kind == AxisState::Kind::ramp_slope)
-      groups[static_cast<std::size_t>(x.noise)] = DriftBudgetTerm::ramp;
+  // bias_gm and B's multi-GM terms stay bias_instability, the fitted GM terms are
+  // gauss_markov; a ramp slope has no driving noise.
+  for (const AxisState& x : layout.axis_states) {
+    const auto k = static_cast<std::size_t>(x.noise);
+    if (x.kind == AxisState::Kind::ramp_slope) groups[k] = DriftBudgetTerm::ramp;
+    const SensorAxisNoise& axis = (x.gyro ? noise.gyro : noise.accel)[x.axis];
+    if (x.kind == AxisState::Kind::gm_term &&
+        static_cast<std::size_t>(x.term) >= axis.bias_instability_terms)
+      groups[k] = DriftBudgetTerm::gauss_markov;
+  }
   return groups;
 }
 
@@ -291,7 +298,7 @@ DriftPrediction predict_stationary_drift(const InsSensorNoise& noise,
   // linear in Q_c, so Σ_g Q_d,g = Q_d) and P_g(0) its part of P₀; Σ_g P_g = P at every step.
   std::array<MatrixXd, kDriftBudgetTerms> P_group, Qd_group;
   if (options.budget) {
-    const std::vector<DriftBudgetTerm> groups = noise_groups(layout);
+    const std::vector<DriftBudgetTerm> groups = noise_groups(layout, acting);
     for (std::size_t g = 0; g < kDriftBudgetTerms; ++g) {
       P_group[g] = initial.parts[g];
       models::ContinuousStateModel only = model;

@@ -20,21 +20,32 @@ namespace imunoise::ins {
 /// The sources of the drift budget (DriftPrediction::horizontal_variance_budget_m2).
 enum class DriftBudgetTerm {
   white_noise,       ///< N of gyro and accel, during navigation (process noise)
-  bias_instability,  ///< B / GM terms (bias_gm, gm_terms), during navigation (process noise)
+  bias_instability,  ///< B (bias_gm and B's multi-GM terms, the first
+                     ///< SensorAxisNoise::bias_instability_terms of gm_terms), during
+                     ///< navigation (process noise)
   random_walk,       ///< K, during navigation (process noise)
+  gauss_markov,      ///< the fitted GM terms (the rest of gm_terms), during navigation
   ramp,              ///< R: the ramp slope, whole (its alignment residual included)
   alignment,         ///< P₀ left by the alignment (window means of N, K, GM; GM start values;
                      ///< without alignment: the model's P₀ except the ramp slope)
   heading,           ///< the initial heading σ (and its Earth-rate bias-removal coupling)
 };
-inline constexpr std::size_t kDriftBudgetTerms = 6;
+inline constexpr std::size_t kDriftBudgetTerms = 7;
 /// Variance per DriftBudgetTerm, in enum order [m²].
 using DriftBudgetRow = std::array<double, kDriftBudgetTerms>;
 /// Snake-case name of a budget term ("white_noise", …, "heading").
 constexpr std::string_view name_of(DriftBudgetTerm term) {
   constexpr std::array<std::string_view, kDriftBudgetTerms> names{
-      "white_noise", "bias_instability", "random_walk", "ramp", "alignment", "heading"};
+      "white_noise", "bias_instability", "random_walk", "gauss_markov",
+      "ramp",        "alignment",        "heading"};
   return names[static_cast<std::size_t>(term)];
+}
+/// The symbol of a budget term as the report writes it ("N", "B", "K", "GM", "R",
+/// "alignment", "heading").
+constexpr std::string_view symbol_of(DriftBudgetTerm term) {
+  constexpr std::array<std::string_view, kDriftBudgetTerms> symbols{
+      "N", "B", "K", "GM", "R", "alignment", "heading"};
+  return symbols[static_cast<std::size_t>(term)];
 }
 
 struct DriftPredictionOptions {
@@ -60,7 +71,7 @@ struct DriftPredictionOptions {
   /// σ of the initial heading error δψ_D [rad], ≥ 0 (a given heading's uncertainty or a
   /// gyrocompass σ), taken independent of everything else.
   double heading_sigma_rad = 0.0;
-  /// true: also fill DriftPrediction::horizontal_variance_budget_m2 (6 more propagations).
+  /// true: also fill DriftPrediction::horizontal_variance_budget_m2 (7 more propagations).
   bool budget = false;
 };
 

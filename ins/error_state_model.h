@@ -16,6 +16,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -60,6 +61,9 @@ struct SensorAxisNoise {
   /// state (ḃ_RW = K w + s). 0 = no state. Not carried with BiasModel::gauss_markov (no RW
   /// state to integrate it).
   double ramp = 0.0;
+  /// How many of the first gm_terms stand for B (its multi-GM representation); the rest are
+  /// fitted GM terms. Only the drift budget tells them apart (ins::DriftBudgetTerm).
+  std::size_t bias_instability_terms = 0;
 };
 
 /// x, y, z axes (body FRD) of the gyro and the accelerometer.

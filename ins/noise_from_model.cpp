@@ -29,6 +29,7 @@ SensorAxisNoise axis_noise(const models::SensorAxisParameters& p, const models::
   // for B); every fitted GM term as its own state beside them (theory.md §4.4, §6.3).
   if (!has_single_gm_fallback(*axis)) n.bias_gm = {};
   n.gm_terms = axis->multi_gm;
+  n.bias_instability_terms = axis->multi_gm.size();
   for (const models::GaussMarkovEstimate& gm : axis->gauss_markov) n.gm_terms.push_back(gm.value);
   n.ramp = axis->terms[NoiseTerm::ramp].value;
   return n;

@@ -310,19 +310,21 @@ std::string budget_column(std::size_t term) {
   return std::string(ins::name_of(static_cast<ins::DriftBudgetTerm>(term))) + "_variance_m2";
 }
 constexpr const char* kBudgetTotal = "predicted_horizontal_variance_m2";
+constexpr const char* kBudgetReportTime = "report_time";
 
 }  // namespace
 
 std::string format_drift_budget_csv(const pipeline::DriftBudget& b) {
   const std::size_t n = b.time_s.size();
-  IMUNOISE_EXPECT(b.variance_m2.size() == n && b.predicted_variance_m2.size() == n,
-                  "drift budget: its vectors differ in length");
+  IMUNOISE_EXPECT(
+      b.variance_m2.size() == n && b.predicted_variance_m2.size() == n && b.report_time.size() == n,
+      "drift budget: its vectors differ in length");
   std::ostringstream out;
-  out << "time_s";
+  out << "time_s," << kBudgetReportTime;
   for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) out << ',' << budget_column(g);
   out << ',' << kBudgetTotal << '\n';
   for (std::size_t i = 0; i < n; ++i) {
-    out << shortest_number_text(b.time_s[i]);
+    out << shortest_number_text(b.time_s[i]) << ',' << (b.report_time[i] ? 1 : 0);
     for (const double v : b.variance_m2[i]) out << ',' << shortest_number_text(v);
     out << ',' << shortest_number_text(b.predicted_variance_m2[i]) << '\n';
   }
@@ -337,13 +339,20 @@ pipeline::DriftBudget read_drift_budget_csv(const std::string& path) {
   const NumericTable t = read_numeric_table(path);
   const std::string what = "a drift_budget.csv";
   std::vector<std::size_t> c{require_column(t, path, "time_s", what)};
+  const std::size_t flag = require_column(t, path, kBudgetReportTime, what);
   for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g)
     c.push_back(require_column(t, path, budget_column(g), what));
   c.push_back(require_column(t, path, kBudgetTotal, what));
   pipeline::DriftBudget b;
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
     for (const std::size_t column : c) require_cells(t, path, r, {column});
+    require_cells(t, path, r, {flag});
     const auto& row = t.rows[r];
+    const double is_report = *row[flag];
+    IMUNOISE_CHECK(is_report == 0.0 || is_report == 1.0, InputError,
+                   path + ":" + std::to_string(r + 2) + ": report_time must be 0 or 1 (got " +
+                       shortest_number_text(is_report) + ")");
+    b.report_time.push_back(is_report == 1.0);
     b.time_s.push_back(*row[c[0]]);
     ins::DriftBudgetRow v{};
     for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) v[g] = *row[c[1 + g]];

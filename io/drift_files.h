@@ -1,10 +1,10 @@
 /// @file
-/// @brief The three result files of `imunoise drift`, each written and read back here over one
+/// @brief The four result files of `imunoise drift`, each written and read back here over one
 /// typed struct (pipeline/drift_series.h, pipeline/drift_run.h): drift_envelope.csv
-/// (DriftSeries), drift_segments.csv (DriftSegment per segment) and drift_summary.json
-/// (DriftSummary). Files hold human units where their column or key says so (deg); the structs
-/// are SI. Writes are atomic (io/atomic_output.h). Every reader checks the columns or keys it
-/// needs and reports a bad file as InputError "FILE[:LINE]: problem".
+/// (DriftSeries), drift_segments.csv (DriftSegment per segment), drift_summary.json
+/// (DriftSummary) and drift_budget.csv (DriftBudget). Files hold human units where their column or
+/// key says so (deg); the structs are SI. Writes are atomic (io/atomic_output.h). Every reader
+/// checks the columns or keys it needs and reports a bad file as InputError "FILE[:LINE]: problem".
 #pragma once
 
 #include <string>
@@ -55,15 +55,17 @@ std::vector<pipeline::DriftSegment> read_drift_segments_csv(const std::string& p
 /// @}
 
 /// @name drift_budget.csv
-/// Columns `time_s`, then per source (ins::DriftBudgetTerm order) `<name>_variance_m2`
-/// (white_noise, bias_instability, random_walk, ramp, alignment, heading), then
-/// `predicted_horizontal_variance_m2`; one row per report time.
+/// Columns `time_s`, `report_time` (1 at a report time, else 0), then per source
+/// (ins::DriftBudgetTerm order) `<name>_variance_m2` (white_noise, bias_instability,
+/// random_walk, gauss_markov, ramp, alignment, heading), then
+/// `predicted_horizontal_variance_m2`; one row per time of pipeline::DriftBudget (the report
+/// times and a log-spaced grid).
 /// @{
 
 /// The text of drift_budget.csv. @throws ContractViolation when the vectors differ in length.
 std::string format_drift_budget_csv(const pipeline::DriftBudget& budget);
 void write_drift_budget_csv(const std::string& path, const pipeline::DriftBudget& budget);
-/// Reads PATH back; every column required, every cell filled.
+/// Reads PATH back; every column required, every cell filled, report_time 0 or 1.
 pipeline::DriftBudget read_drift_budget_csv(const std::string& path);
 /// @}
 

@@ -34,6 +34,9 @@ void load_drift_results(ResultsDirectory& r) {
   if (fs::exists(drift / "drift_envelope.csv")) {
     r.drift_envelope = read_drift_envelope_csv((drift / "drift_envelope.csv").string());
   }
+  if (fs::exists(drift / "drift_budget.csv")) {
+    r.drift_budget = read_drift_budget_csv((drift / "drift_budget.csv").string());
+  }
   if (fs::exists(drift / "drift_segments.csv")) {
     r.drift_segments = read_drift_segments_csv((drift / "drift_segments.csv").string());
   }

@@ -48,6 +48,7 @@ struct ResultsDirectory {
   std::optional<pipeline::DriftSummary> drift_summary;
   std::optional<pipeline::DriftSeries> drift_envelope;  ///< drift_envelope.csv there
   std::vector<pipeline::DriftSegment> drift_segments;   ///< drift_segments.csv there
+  std::optional<pipeline::DriftBudget> drift_budget;    ///< drift_budget.csv there
   /// The commands.txt imunoise wrote in DIR, then in its subdirectories (sorted by name);
   /// a commands.txt imunoise did not write (another tool's) is left out.
   std::vector<CommandFileEntry> commands;

@@ -81,6 +81,34 @@ DriftSeries envelope(const DriftAnalysis& analysis) {
   return s;
 }
 
+/// The budget of ANALYSIS's prediction at the report times of O and ~10 log-spaced times per
+/// decade of its output grid (DriftBudget).
+DriftBudget budget_on_grid(const DriftAnalysis& analysis, const DriftOptions& o) {
+  const std::size_t n = analysis.time_s.size();
+  std::vector<std::size_t> rows;  // indices into the output grid
+  std::vector<std::size_t> reports;
+  for (const double t : o.report_times_s)
+    reports.push_back(static_cast<std::size_t>(std::llround(t / o.output_step_s)) - 1);
+  for (int k = 0;; ++k) {
+    const auto i = static_cast<std::size_t>(std::llround(std::pow(10.0, k / 10.0))) - 1;
+    if (i >= n) break;
+    rows.push_back(i);
+  }
+  if (n > 0) rows.push_back(n - 1);
+  rows.insert(rows.end(), reports.begin(), reports.end());
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  DriftBudget b;
+  for (const std::size_t i : rows) {
+    const double drms = analysis.prediction.horizontal_drms_m[i];
+    b.time_s.push_back(analysis.time_s[i]);
+    b.variance_m2.push_back(analysis.prediction.horizontal_variance_budget_m2[i]);
+    b.predicted_variance_m2.push_back(drms * drms);
+    b.report_time.push_back(std::find(reports.begin(), reports.end(), i) != reports.end());
+  }
+  return b;
+}
+
 /// How the covariance carries B, the GM terms and R (drift_summary.json's protocol).
 std::string bias_states_note(const models::NoiseModel& model, const ins::InsSensorNoise& noise,
                              models::GmConvention convention) {
@@ -187,13 +215,7 @@ DriftResult run_drift(const Recording& recording, const models::NoiseModel& mode
   DriftAnalysis analysis = analyze_drift(series, noise, o);
   DriftResult out;
   out.series = envelope(analysis);
-  for (const double t : o.report_times_s) {
-    const auto i = static_cast<std::size_t>(std::llround(t / o.output_step_s)) - 1;
-    const double drms = analysis.prediction.horizontal_drms_m[i];
-    out.budget.time_s.push_back(analysis.time_s[i]);
-    out.budget.variance_m2.push_back(analysis.prediction.horizontal_variance_budget_m2[i]);
-    out.budget.predicted_variance_m2.push_back(drms * drms);
-  }
+  out.budget = budget_on_grid(analysis, o);
   DriftSummary& summary = out.summary;
   summary.consistency = std::move(analysis.consistency);
   if (options.monte_carlo_runs > 0) {

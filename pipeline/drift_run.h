@@ -102,11 +102,14 @@ struct DriftSummary {
 
 /// The drift budget (drift_budget.csv): the predicted horizontal variance σ_N² + σ_E² of
 /// the same-file prediction split by source (ins::DriftBudgetTerm; independent sources, each
-/// propagated alone, so a row sums to the predicted variance) at each report time.
+/// propagated alone, so a row sums to the predicted variance) at each report time and, for
+/// the stacked plot of the report, at about 10 times per decade of the output grid
+/// (log-spaced, from the first output step to the end of the navigation), sorted.
 struct DriftBudget {
-  std::vector<double> time_s;                    ///< the report times [s]
+  std::vector<double> time_s;                    ///< [s], increasing
   std::vector<ins::DriftBudgetRow> variance_m2;  ///< per time, in DriftBudgetTerm order [m²]
   std::vector<double> predicted_variance_m2;     ///< σ_N² + σ_E² at each time [m²]
+  std::vector<bool> report_time;                 ///< per time: it is a report time
 };
 
 /// Everything `imunoise drift` writes.

@@ -2,6 +2,7 @@
 /// @brief The terminal summary of `imunoise drift` (see drift_summary_text.h).
 #include "report/drift_summary_text.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "common/number_text.h"
@@ -58,13 +59,14 @@ std::string drift_summary_text(const pipeline::DriftSummary& s) {
 }
 
 std::string drift_budget_text(const pipeline::DriftBudget& b) {
-  if (b.time_s.empty()) return "";
+  if (std::find(b.report_time.begin(), b.report_time.end(), true) == b.report_time.end()) return "";
   std::ostringstream out;
   out << "\ndrift budget: share of the predicted horizontal variance [%]\n  time  ";
   for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g)
     out << "  " << ins::name_of(static_cast<ins::DriftBudgetTerm>(g));
   out << "\n";
   for (std::size_t i = 0; i < b.time_s.size(); ++i) {
+    if (!b.report_time[i]) continue;
     out << "  " << significant_number_text(b.time_s[i]) << " s";
     const double total = b.predicted_variance_m2[i];
     for (const double v : b.variance_m2[i])

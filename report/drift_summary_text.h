@@ -14,8 +14,9 @@ namespace imunoise::report {
 /// The terminal summary of SUMMARY; every line ends with '\n'.
 std::string drift_summary_text(const pipeline::DriftSummary& summary);
 
-/// The drift budget as a table: per report time the share [%] of each source in the
-/// predicted horizontal variance (pipeline::DriftBudget); empty text for an empty budget.
+/// The drift budget as a table: per report time (the rows of BUDGET so flagged) the share [%]
+/// of each source in the predicted horizontal variance (pipeline::DriftBudget); empty text
+/// without a report time.
 std::string drift_budget_text(const pipeline::DriftBudget& budget);
 
 }  // namespace imunoise::report

@@ -362,6 +362,52 @@ Figure drift_figure(const pipeline::DriftSeries& drift,
   return f;
 }
 
+Figure drift_budget_figure(const pipeline::DriftBudget& budget) {
+  Figure f;
+  f.name = "drift-budget";
+  f.x_column = "time_s";
+  f.y_column = "cumulative_share_percent";
+  f.csv_intervals = false;
+  f.plot.id = f.name;
+  f.plot.title = "Drift budget: share of each source in the predicted horizontal variance";
+  f.plot.x = {"time since segment start [s]", Scale::log10, {}, {}};
+  f.plot.y = {"share of the predicted horizontal variance [%] (stacked)", Scale::linear, 0.0,
+              100.0};
+  const std::size_t n = budget.time_s.size();
+  if (n >= 2 && budget.time_s.front() > 0.0 && budget.time_s.back() > budget.time_s.front()) {
+    f.plot.x.min = budget.time_s.front();  // the bands end where the navigation ends
+    f.plot.x.max = budget.time_s.back();
+  }
+  std::vector<double> below(n, 0.0);
+  for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) {
+    bool any = false;
+    Series s;
+    s.x = budget.time_s;
+    s.fill_base = below;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double total = budget.predicted_variance_m2[i];
+      const double share = total > 0.0 ? 100.0 * budget.variance_m2[i][g] / total : 0.0;
+      any = any || share > 0.0;
+      below[i] += share;
+      s.y.push_back(below[i]);
+    }
+    if (!any) continue;
+    const auto term = static_cast<ins::DriftBudgetTerm>(g);
+    s.name = std::string(ins::symbol_of(term));
+    s.color = static_cast<int>(g);
+    s.line_width = 1.0;
+    s.fill_opacity = 0.55;
+    add_series(f, std::move(s), std::string(ins::name_of(term)));
+  }
+  f.caption =
+      "How the predicted horizontal variance σ_N² + σ_E² splits over its independent sources "
+      "as the free-inertial time grows: white noise N, bias instability B, rate random walk K, "
+      "the fitted Gauss–Markov terms GM, rate ramp R (process noise during navigation), what "
+      "the alignment leaves, and the initial heading; each propagated alone, so the bands "
+      "stack to 100 %.";
+  return f;
+}
+
 Figure interval_figure(const std::vector<double>& bin_low_s, const std::vector<double>& bin_high_s,
                        const std::vector<std::int64_t>& counts, double median_interval_s) {
   IMUNOISE_EXPECT(bin_low_s.size() == counts.size() && bin_high_s.size() == counts.size(),

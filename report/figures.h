@@ -13,6 +13,7 @@
 #include "io/allan_csv.h"
 #include "io/psd_csv.h"
 #include "models/noise_model.h"
+#include "pipeline/drift_run.h"
 #include "pipeline/drift_series.h"
 #include "report/svg_plot.h"
 
@@ -54,6 +55,13 @@ Figure psd_figure(SensorKind kind, const std::vector<io::PsdAxis>& spectra);
 /// horizontal parts of DRIFT are drawn.
 Figure drift_figure(const pipeline::DriftSeries& drift,
                     const std::vector<pipeline::DriftSegment>& segments);
+
+/// "drift-budget": the share [%] of each source (N, B, K, GM, R, alignment, heading;
+/// ins::DriftBudgetTerm) in the predicted horizontal variance against time, stacked (each
+/// source a band from the sum of those below it to that sum plus its own share; the top is
+/// 100 %), on a log time axis over the times of BUDGET. Sources that are 0 throughout are
+/// left out; the CSV holds each band's upper edge (the cumulative share).
+Figure drift_budget_figure(const pipeline::DriftBudget& budget);
 
 /// "sampling-intervals": histogram of the regular sample intervals [ms] as stems at the bin
 /// centres (log count axis; empty bins left out), with the median marked. The three lists must

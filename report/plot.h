@@ -43,6 +43,11 @@ struct Series {
   Line line = Line::solid;
   Marker marker = Marker::none;
   double line_width = 1.5;  ///< px
+  /// A filled band: empty, or as long as y — the area between fill_base and y is filled in
+  /// the series colour (fill_opacity), over each run of points where x, y and fill_base are
+  /// all plottable (a stacked plot: fill_base = the series below). Drawn below the line.
+  std::vector<double> fill_base{};
+  double fill_opacity = 0.6;  ///< 0…1
 };
 
 /// A reference line y = y0·(x/x0)^slope through (x0, y0) = (x, y): straight on log-log axes,

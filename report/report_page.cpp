@@ -75,6 +75,12 @@ PageSection drift_section(const io::ResultsDirectory& r, std::vector<ReportFile>
   Table t = drift_table(summary);
   t.folded = true;
   if (!t.rows.empty()) s.tables.push_back(std::move(t));
+  if (r.drift_budget && !r.drift_budget->time_s.empty()) {
+    Table budget = drift_budget_table(*r.drift_budget);
+    budget.folded = true;
+    if (!budget.rows.empty()) s.tables.push_back(std::move(budget));
+    s.figures.push_back(add_figure(drift_budget_figure(*r.drift_budget), files));
+  }
   return s;
 }
 
@@ -192,6 +198,7 @@ std::string describe_file(const std::string& relative) {
   if (name == "drift_segments.csv") return "recorded drift of every segment";
   if (name == "drift_envelope.csv") return "predicted drift envelope and recorded RMS";
   if (name == "drift_summary.json") return "drift consistency checks";
+  if (name == "drift_budget.csv") return "predicted horizontal variance split by source";
   if (relative.rfind("configs", 0) == 0) return "filter configuration";
   if (relative.rfind("discrete", 0) == 0) return "discrete state-space model";
   return "";

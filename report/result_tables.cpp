@@ -2,6 +2,7 @@
 /// @brief The report's tables of saved results (see result_tables.h).
 #include "report/result_tables.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -168,6 +169,41 @@ Table drift_table(const pipeline::DriftSummary& summary) {
                       triple(c.coverage), triple(c.expected_coverage),
                       num(c.mean_nees, 3) + pair(c.nees_band_low, c.nees_band_high)});
   }
+  return t;
+}
+
+Table drift_budget_table(const pipeline::DriftBudget& budget) {
+  Table t;
+  t.id = "drift-budget-table";
+  t.caption =
+      "Drift budget: each source's part of the predicted horizontal error at the report times "
+      "(σ it alone gives, and its share of the variance)";
+  t.header = {"source"};
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i < budget.time_s.size(); ++i) {
+    if (!budget.report_time[i]) continue;
+    at.push_back(i);
+    const std::string time = num(budget.time_s[i], 6) + " s";
+    t.header.push_back("σ at " + time + " [m]");
+    t.header.push_back("share at " + time + " [%]");
+  }
+  if (at.empty()) return t;
+  for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) {
+    const auto term = static_cast<ins::DriftBudgetTerm>(g);
+    std::vector<std::string> row{std::string(ins::symbol_of(term))};
+    for (const std::size_t i : at) {
+      const double v = budget.variance_m2[i][g], total = budget.predicted_variance_m2[i];
+      row.push_back(num(std::sqrt(std::max(v, 0.0))));
+      row.push_back(num(total > 0.0 ? 100.0 * v / total : 0.0));
+    }
+    t.rows.push_back(std::move(row));
+  }
+  std::vector<std::string> total{"total (predicted DRMS)"};
+  for (const std::size_t i : at) {
+    total.push_back(num(std::sqrt(budget.predicted_variance_m2[i])));
+    total.push_back("100");
+  }
+  t.rows.push_back(std::move(total));
   return t;
 }
 

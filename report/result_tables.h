@@ -34,4 +34,11 @@ Table sampling_table(const pipeline::SamplingReport& report);
 /// coverage and mean NEES with their bands (a non-finite bound leaves its interval out).
 Table drift_table(const pipeline::DriftSummary& summary);
 
+/// "drift-budget-table": per source (N, B, K, GM, R, alignment, heading; ins::DriftBudgetTerm)
+/// and report time of BUDGET (its rows flagged report_time) the σ that source alone gives
+/// [m] (√ of its variance) and its share of the predicted horizontal variance [%]; a last
+/// row "total" with the predicted DRMS and 100 %. The variances add (independent sources),
+/// so the σ add in quadrature to the DRMS. No rows without a report time.
+Table drift_budget_table(const pipeline::DriftBudget& budget);
+
 }  // namespace imunoise::report

@@ -32,6 +32,10 @@ void validate(const Plot& plot) {
             std::to_string(series.y.size()) + " values (got " +
             std::to_string(series.y_low.size()) + ", " + std::to_string(series.y_high.size()) +
             ")");
+    IMUNOISE_CHECK(series.fill_base.empty() || series.fill_base.size() == series.y.size(),
+                   InputError,
+                   name + "fill_base must be empty or have " + std::to_string(series.y.size()) +
+                       " values (got " + std::to_string(series.fill_base.size()) + ")");
   }
 }
 

@@ -70,6 +70,35 @@ void add_error_bar(const Series& series, std::size_t i, const Canvas& c, SeriesG
   data.segments.emplace_back(Point{px, p_low}, Point{px, p_high});
 }
 
+/// The band of SERIES between fill_base and y (Series::fill_base) as closed polygons, one per
+/// run of points where x, y and the base are plottable; clipped by the caller's clip path.
+std::string fill_path(const Series& series, const Canvas& c) {
+  std::string d;
+  std::vector<Point> top, base;
+  const auto close_run = [&] {
+    if (top.size() >= 2) {
+      for (std::size_t k = 0; k < top.size(); ++k)
+        path_point(d, k == 0 ? 'M' : 'L', top[k].x, top[k].y);
+      for (std::size_t k = base.size(); k-- > 0;) path_point(d, 'L', base[k].x, base[k].y);
+      d.append("Z");
+    }
+    top.clear();
+    base.clear();
+  };
+  for (std::size_t i = 0; i < series.x.size(); ++i) {
+    if (!c.x.plottable(series.x[i]) || !c.y.plottable(series.y[i]) ||
+        !c.y.plottable(series.fill_base[i])) {
+      close_run();
+      continue;
+    }
+    const double px = c.x.px(series.x[i]);
+    top.push_back({px, c.y.px(series.y[i])});
+    base.push_back({px, c.y.px(series.fill_base[i])});
+  }
+  close_run();
+  return d;
+}
+
 SeriesGeometry one_series_geometry(const Series& series, const Canvas& c, Obstacles& data) {
   SeriesGeometry g;
   g.pts.resize(series.x.size());
@@ -87,6 +116,7 @@ SeriesGeometry one_series_geometry(const Series& series, const Canvas& c, Obstac
     if (series.y_low.empty() || !x_ok || !c.x.inside(series.x[i])) continue;
     add_error_bar(series, i, c, g, data);
   }
+  if (!series.fill_base.empty()) g.fill = fill_path(series, c);
   if (series.line != Line::none) {
     g.line = polyline_path(g.pts, c.clip);
     data.add_polyline(g.pts);
@@ -229,9 +259,19 @@ void append_series(std::string& out, const Plot& plot, const std::vector<SeriesG
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     const Series& series = plot.series[s];
     const SeriesGeometry& g = geometry[s];
-    if (g.bars.empty() && g.line.empty() && g.markers.empty()) continue;
+    if (g.bars.empty() && g.line.empty() && g.markers.empty() && g.fill.empty()) continue;
     const std::string_view color = palette_color(series.color);
     out.append("<g>\n");
+    if (!g.fill.empty()) {
+      out.append("<path");
+      attr(out, "fill", color);
+      attr(out, "fill-opacity",
+           std::isfinite(series.fill_opacity) ? std::clamp(series.fill_opacity, 0.0, 1.0) : 0.6);
+      attr(out, "stroke", "none");
+      attr(out, "clip-path", c.clip_ref);
+      attr_raw(out, "d", g.fill);
+      out.append("/>\n");
+    }
     if (!g.bars.empty()) {
       out.append("<path");
       attr(out, "fill", "none");

@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "report/plot.h"
 #include "report/svg_axes.h"
 #include "report/svg_geometry.h"
-#include "report/plot.h"
 
 namespace imunoise::report::svg_detail {
 
@@ -34,6 +34,7 @@ double line_width_of(const Series& s);
 struct SeriesGeometry {
   std::vector<std::optional<Point>> pts;  ///< per data point; nullopt = not plottable
   std::string bars, markers, line;        ///< path data ("" = none)
+  std::string fill;                       ///< path data of the filled band ("" = none)
   bool has_data = false;                  ///< some point is plottable
 };
 
@@ -57,7 +58,7 @@ std::vector<GuideGeometry> guide_geometry(const Plot& plot, const Canvas& c);
 /// @{
 /// The guide lines: light grey, dashed, clipped to the area.
 void append_guides(std::string& out, const std::vector<GuideGeometry>& guides, const Canvas& c);
-/// One `<g>` per series with something to draw: error bars, line, markers.
+/// One `<g>` per series with something to draw: filled band, error bars, line, markers.
 void append_series(std::string& out, const Plot& plot, const std::vector<SeriesGeometry>& geometry,
                    const Canvas& c);
 /// @}

@@ -50,7 +50,9 @@ struct DriftArgs {
   bool location_given = false;
   std::optional<double> heading_deg;
   double heading_sigma_deg = 0.0;
-  std::vector<double> report_times_s{60.0, 300.0, 600.0};
+  /// Those within --segment are used: 1, 5 and 10 min by default; 30 min and 1 h with
+  /// segments that long.
+  std::vector<double> report_times_s{60.0, 300.0, 600.0, 1800.0, 3600.0};
   int monte_carlo = 100;
   std::uint64_t seed = 1;
   std::string gm_convention = "peak_match";
@@ -181,7 +183,8 @@ void register_drift_command(CLI::App& app) {
   cmd->add_option("--heading-sigma", args->heading_sigma_deg, "1-sigma of --heading [deg]")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--report-times", args->report_times_s,
-                  "times for the statistics [s] (default 60,300,600)")
+                  "times for the statistics [s], those within --segment (default "
+                  "60,300,600,1800,3600)")
       ->delimiter(',');
   cmd->add_option("--monte-carlo", args->monte_carlo,
                   "Monte Carlo runs of the model through the same protocol (default 100; 0 = off)")

@@ -537,13 +537,14 @@ TEST(DriftPrediction, AccelRampFollowsTheSchulerClosedForm) {
 
 TEST(DriftPrediction, BudgetContributionsSumToThePredictedVariance) {
   // Every source at once (N, K, turn-on σ, B as bias_gm and two gm_terms, ramps, heading σ),
-  // aligned, Earth rate on: the six contributions are variances of independent sources, so
+  // aligned, Earth rate on: the seven contributions are variances of independent sources, so
   // each is ≥ 0 and they sum to σ_N² + σ_E² (to rounding; 1e-9 relative).
   SensorAxisNoise gyro, accel;
   gyro.random_walk = kK;
   gyro.turn_on_bias_sigma = kB;
   gyro.bias_gm = {1.3e-4, 15.6};
   gyro.gm_terms = {{5e-5, 3.0}, {4e-5, 300.0}};
+  gyro.bias_instability_terms = 1;  // the first is B's, the second a fitted GM term
   gyro.ramp = 1e-8;
   accel.random_walk = 5e-5;
   accel.bias_gm = {5e-4, 40.0};
@@ -589,12 +590,37 @@ TEST(DriftPrediction, BudgetContributionsSumToThePredictedVariance) {
                 1e-9)
         << name_of(term);
   };
-  InsSensorNoise vrw, ramp;
+  InsSensorNoise vrw, ramp, b_terms, gm_fitted;
   for (auto& a : vrw.accel) a.white_noise = 1.47e-3;
   ramp.gyro[1].ramp = 1e-8;
+  // Without alignment the GM start values are in "alignment"; from a stationary σ² the
+  // process noise 2σ²/T_c of a GM term goes to B when it is one of B's terms, else to GM.
+  // So the two are told apart by their driving noise: a term's share of the process-noise
+  // groups lands in its own column.
+  b_terms.gyro[0].gm_terms = {{5e-5, 100.0}};
+  b_terms.gyro[0].bias_instability_terms = 1;
+  gm_fitted.gyro[0].gm_terms = {{5e-5, 100.0}};
   only(vrw, 0.0, DriftBudgetTerm::white_noise);
   only(InsSensorNoise{}, 1.0 * kDeg, DriftBudgetTerm::heading);
   only(ramp, 0.0, DriftBudgetTerm::ramp);
+  const auto process_share = [](const InsSensorNoise& n, DriftBudgetTerm term) {
+    DriftPredictionOptions o;
+    o.times_s = {300.0};
+    o.budget = true;
+    const DriftPrediction p = predict_stationary_drift(n, o);
+    const DriftBudgetRow& row = p.horizontal_variance_budget_m2[0];
+    const double alignment = row[static_cast<std::size_t>(DriftBudgetTerm::alignment)];
+    const double total = p.horizontal_drms_m[0] * p.horizontal_drms_m[0];
+    EXPECT_GT(total - alignment, 0.0) << name_of(term);
+    return row[static_cast<std::size_t>(term)] / (total - alignment);
+  };
+  EXPECT_NEAR(process_share(b_terms, DriftBudgetTerm::bias_instability), 1.0, 1e-9);
+  EXPECT_NEAR(process_share(gm_fitted, DriftBudgetTerm::gauss_markov), 1.0, 1e-9);
+  // The same term either way: the same prediction.
+  DriftPredictionOptions o;
+  o.times_s = {300.0};
+  EXPECT_EQ(predict_stationary_drift(b_terms, o).horizontal_drms_m,
+            predict_stationary_drift(gm_fitted, o).horizontal_drms_m);
 }
 
 }  // namespace

@@ -352,21 +352,29 @@ TEST(DriftSummaryJson, ARenamedKeyIsAnErrorThatNamesIt) {
 TEST(DriftBudgetCsv, RoundTripsEveryColumn) {
   pipeline::DriftBudget b;
   b.time_s = {60.0, 300.0};
-  b.variance_m2 = {{1.0, 2.5, 3e-7, 0.0, 1.0 / 3.0, 4e12}, {5.0, 6.0, 7.0, 8.0, 9.0, 10.0}};
-  b.predicted_variance_m2 = {4e12 + 6.5, 45.0};
+  b.variance_m2 = {{1.0, 2.5, 3e-7, 0.25, 0.0, 1.0 / 3.0, 4e12},
+                   {5.0, 6.0, 7.0, 7.5, 8.0, 9.0, 10.0}};
+  b.predicted_variance_m2 = {4e12 + 6.75, 52.5};
+  b.report_time = {true, false};
   const auto dir = test::make_temp_dir("drift-budget");
   const std::string path = (dir / "drift_budget.csv").string();
   write_drift_budget_csv(path, b);
   const std::string text = test::read_file_bytes(path);
   EXPECT_EQ(text, format_drift_budget_csv(b));
   EXPECT_EQ(text.substr(0, text.find('\n')),
-            "time_s,white_noise_variance_m2,bias_instability_variance_m2,"
-            "random_walk_variance_m2,ramp_variance_m2,alignment_variance_m2,"
-            "heading_variance_m2,predicted_horizontal_variance_m2");
+            "time_s,report_time,white_noise_variance_m2,bias_instability_variance_m2,"
+            "random_walk_variance_m2,gauss_markov_variance_m2,ramp_variance_m2,"
+            "alignment_variance_m2,heading_variance_m2,predicted_horizontal_variance_m2");
   const pipeline::DriftBudget r = read_drift_budget_csv(path);
   EXPECT_EQ(r.time_s, b.time_s);
   EXPECT_EQ(r.variance_m2, b.variance_m2);
   EXPECT_EQ(r.predicted_variance_m2, b.predicted_variance_m2);
+  EXPECT_EQ(r.report_time, b.report_time);
+  std::string flag = text;
+  flag.replace(flag.find("\n60,1,") + 4, 1, "2");
+  test::write_text(dir / "drift_budget.csv", flag);
+  EXPECT_NE(error_of([&] { read_drift_budget_csv(path); }).find("report_time must be 0 or 1"),
+            std::string::npos);
   std::string renamed = text;
   renamed.replace(renamed.find("ramp_variance_m2"), 4, "rmp_");
   test::write_text(dir / "drift_budget.csv", renamed);

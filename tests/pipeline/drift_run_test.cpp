@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -213,10 +214,23 @@ TEST(DriftRun, ProgressReportsTheSegmentsThenTheMonteCarlo) {
 
 TEST(DriftRun, BudgetRowsSumToThePredictedVarianceAtTheReportTimes) {
   const DriftResult r = run_drift(simulated_recording(200.0), fitted_model(), options());
-  ASSERT_EQ(r.budget.time_s.size(), r.summary.consistency.size());
+  // The report times flagged, in order, among a log-spaced grid that ends at the navigation
+  // end (for the stacked plot).
+  std::vector<double> flagged;
+  for (std::size_t k = 0; k < r.budget.time_s.size(); ++k)
+    if (r.budget.report_time[k]) flagged.push_back(r.budget.time_s[k]);
+  std::vector<double> report;
+  for (const DriftConsistency& c : r.summary.consistency) report.push_back(c.time_s);
+  EXPECT_EQ(flagged, report);
+  EXPECT_GT(r.budget.time_s.size(), report.size());
+  EXPECT_TRUE(std::is_sorted(r.budget.time_s.begin(), r.budget.time_s.end()));
+  EXPECT_EQ(r.budget.time_s.back(), r.series.time_s.back());
   for (std::size_t k = 0; k < r.budget.time_s.size(); ++k) {
-    const double drms = r.summary.consistency[k].predicted_drms_m;
-    EXPECT_EQ(r.budget.time_s[k], r.summary.consistency[k].time_s);
+    const auto i = static_cast<std::size_t>(
+        std::find(r.series.time_s.begin(), r.series.time_s.end(), r.budget.time_s[k]) -
+        r.series.time_s.begin());
+    ASSERT_LT(i, r.series.time_s.size());
+    const double drms = r.series.predicted_drms_m[i];
     EXPECT_DOUBLE_EQ(r.budget.predicted_variance_m2[k], drms * drms);
     double sum = 0.0;
     for (const double v : r.budget.variance_m2[k]) sum += v;

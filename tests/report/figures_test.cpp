@@ -177,6 +177,36 @@ TEST(DriftFigure, ThreeSigmaIsThreeTimesTheDrms) {
   EXPECT_TRUE(check_xml(render_svg(f.plot)).ok);
 }
 
+TEST(DriftBudgetFigure, BandsStackTheSharesToOneHundredPercent) {
+  pipeline::DriftBudget b;
+  b.time_s = {1, 10, 100, 1000};
+  // white, B, K, GM, R, alignment, heading; R and heading are 0 throughout.
+  b.variance_m2 = {{1, 1, 0, 0, 0, 2, 0},
+                   {4, 2, 1, 1, 0, 2, 0},
+                   {10, 20, 30, 30, 0, 10, 0},
+                   {5, 50, 300, 100, 0, 45, 0}};
+  b.predicted_variance_m2 = {4, 10, 100, 500};
+  b.report_time = {false, true, true, false};
+  const Figure f = drift_budget_figure(b);
+  EXPECT_EQ(f.name, "drift-budget");
+  ASSERT_EQ(f.plot.series.size(), 5u);  // the sources that are 0 throughout are left out
+  std::vector<std::string> names;
+  for (const Series& s : f.plot.series) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"N", "B", "K", "GM", "alignment"}));
+  for (std::size_t k = 0; k < f.plot.series.size(); ++k) {
+    const Series& s = f.plot.series[k];
+    EXPECT_EQ(s.fill_base, k == 0 ? std::vector<double>(4, 0.0) : f.plot.series[k - 1].y);
+  }
+  EXPECT_EQ(f.plot.series[0].y, (std::vector<double>{25, 40, 10, 1}));
+  for (const double top : f.plot.series.back().y) EXPECT_DOUBLE_EQ(top, 100.0);
+  const std::string svg = render_svg(f.plot);
+  EXPECT_TRUE(check_xml(svg).ok);
+  EXPECT_NE(svg.find("fill-opacity=\"0.55\""), std::string::npos);  // the bands are drawn
+  const auto lines = lines_of(figure_csv(f));
+  EXPECT_EQ(lines[0], "series,time_s,cumulative_share_percent");
+  EXPECT_EQ(lines[1], "white_noise,1,25");
+}
+
 TEST(IntervalFigure, OneStemPerNonEmptyBinAndOneBinShowsTheStep) {
   const Figure f =
       interval_figure({0.0098, 0.0099, 0.0100}, {0.0099, 0.0100, 0.0101}, {5, 0, 995}, 0.01);

@@ -128,6 +128,12 @@ io::ResultsDirectory full_results() {
   e.predicted_heading_sigma_rad = {1e-3, 1e-3, 1e-3};
   e.predicted_attitude_sigma_rad = {1e-3, 1e-3, 1e-3};
   r.drift_envelope = e;
+  pipeline::DriftBudget b;
+  b.time_s = {1.0, 60.0, 600.0};
+  b.variance_m2 = {{1, 0, 0, 0, 0, 1, 0}, {2, 1, 1, 0, 0, 1, 0}, {10, 20, 30, 10, 0, 30, 0}};
+  b.predicted_variance_m2 = {2, 5, 100};
+  b.report_time = {false, true, true};
+  r.drift_budget = b;
   r.commands = {{"commands.txt", {"/home/me", {"analyze", "rec.csv", "-o", "out"}}},
                 {"drift/commands.txt", {"", {"drift", "rec.csv"}}}};
   r.files = {{"configs/openvins.yaml", 2048},
@@ -168,16 +174,17 @@ TEST(ReportPage, EverySectionInOrderWithItsTablesAndFigures) {
   EXPECT_EQ(drift.paragraphs,
             (std::vector<std::string>{"Protocol: 3 segments, each aligned over 60 s and navigated "
                                       "free-inertial for 600 s; height hold."}));
-  EXPECT_EQ(figure_names(drift), (std::vector<std::string>{"drift-horizontal"}));
-  EXPECT_EQ(table_ids(drift), (std::vector<std::string>{"drift-table"}));
-  EXPECT_EQ(drift.tables[0].rows.size(), 2u);  // the checkpoints
+  EXPECT_EQ(figure_names(drift), (std::vector<std::string>{"drift-horizontal", "drift-budget"}));
+  EXPECT_EQ(table_ids(drift), (std::vector<std::string>{"drift-table", "drift-budget-table"}));
+  EXPECT_EQ(drift.tables[0].rows.size(), 2u);              // the checkpoints
+  EXPECT_EQ(drift.tables[1].header.size(), 1u + 2u * 2u);  // two report times
 
   const PageSection& sampling = *section_of(page, "sampling");
   EXPECT_EQ(table_ids(sampling), (std::vector<std::string>{"sampling-table"}));
   EXPECT_EQ(figure_names(sampling),
             (std::vector<std::string>{"sampling-intervals", "sampling-gaps"}));
   EXPECT_TRUE(sampling.paragraphs.empty());
-  EXPECT_EQ(figure_count(page), 2 + 2 + 1 + 2);
+  EXPECT_EQ(figure_count(page), 2 + 2 + 2 + 2);
 }
 
 TEST(ReportPage, PlotFilesAreWhatThePageShows) {
@@ -313,6 +320,7 @@ TEST(ReportPage, OnlyTheSectionsWhoseResultsAreThere) {
   r.psd.reset();
   r.sampling.reset();
   r.drift_envelope.reset();
+  r.drift_budget.reset();
   const ReportDocument doc = build_report_page(r, "now");
   EXPECT_EQ(doc.page.title, "imunoise report — drift");
   EXPECT_EQ(doc.page.facts,

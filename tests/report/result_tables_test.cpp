@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/number_text.h"
+#include "ins/drift_prediction.h"
 #include "models/datasheet_units.h"
 
 namespace imunoise::report {
@@ -123,6 +124,68 @@ TEST(DriftTable, OneRowPerCheckpointWithItsIntervals) {
   ASSERT_EQ(t.rows.size(), 1u);
   EXPECT_EQ(t.rows[0], (std::vector<std::string>{"60", "1.5", "2", "1.33", "0.25 / 0.75 / 1",
                                                  "0.39 / 0.86 / 0.99", "2.5 [1.5, 2.75]"}));
+}
+
+/// A budget of a real prediction (every source acting, aligned, heading σ), rows at 30, 60,
+/// 300 and 600 s with the last three flagged report times.
+pipeline::DriftBudget predicted_budget() {
+  ins::SensorAxisNoise gyro, accel;
+  gyro.white_noise = 1e-4;
+  gyro.random_walk = 3e-7;
+  gyro.gm_terms = {{2e-5, 30.0}, {5e-6, 300.0}};
+  gyro.bias_instability_terms = 1;
+  gyro.ramp = 1e-8;
+  accel.white_noise = 1e-3;
+  accel.random_walk = 5e-5;
+  accel.gm_terms = {{2e-4, 100.0}};
+  ins::InsSensorNoise noise;
+  noise.gyro = {gyro, gyro, gyro};
+  noise.accel = {accel, accel, accel};
+  ins::DriftPredictionOptions o;
+  o.alignment_time_s = 60.0;
+  o.heading_sigma_rad = 0.01;
+  o.times_s = {30.0, 60.0, 300.0, 600.0};
+  o.budget = true;
+  const ins::DriftPrediction p = ins::predict_stationary_drift(noise, o);
+  pipeline::DriftBudget b;
+  b.time_s = p.time_s;
+  b.variance_m2 = p.horizontal_variance_budget_m2;
+  for (const double d : p.horizontal_drms_m) b.predicted_variance_m2.push_back(d * d);
+  b.report_time = {false, true, true, true};
+  return b;
+}
+
+TEST(DriftBudgetTable, ContributionsSumToThePredictedVariance) {
+  const pipeline::DriftBudget b = predicted_budget();
+  const Table t = drift_budget_table(b);
+  EXPECT_EQ(t.id, "drift-budget-table");
+  ASSERT_EQ(t.header.size(), 1u + 2u * 3u);  // source, then σ and share per report time
+  EXPECT_EQ(t.header[1], "σ at 60 s [m]");
+  EXPECT_EQ(t.header[6], "share at 600 s [%]");
+  ASSERT_EQ(t.rows.size(), ins::kDriftBudgetTerms + 1);
+  std::vector<std::string> sources;
+  for (const auto& row : t.rows) sources.push_back(row.at(0));
+  EXPECT_EQ(sources, (std::vector<std::string>{"N", "B", "K", "GM", "R", "alignment", "heading",
+                                               "total (predicted DRMS)"}));
+  for (std::size_t k = 0; k < 3; ++k) {
+    // The cells as printed (4 significant digits): the σ add in quadrature to the DRMS the
+    // prediction gives, the shares add to 100 %, each to the rounding of its cells.
+    const double drms = std::sqrt(b.predicted_variance_m2[k + 1]);
+    double variance = 0.0, share = 0.0;
+    for (std::size_t g = 0; g < ins::kDriftBudgetTerms; ++g) {
+      const double sigma = std::stod(t.rows[g].at(1 + 2 * k));
+      variance += sigma * sigma;
+      share += std::stod(t.rows[g].at(2 + 2 * k));
+      EXPECT_GT(sigma, 0.0) << t.rows[g][0] << " at report time " << k;  // every source acts
+    }
+    EXPECT_NEAR(std::sqrt(variance) / drms, 1.0, 1e-3) << k;
+    EXPECT_NEAR(share, 100.0, 7 * 0.05) << k;
+    EXPECT_NEAR(std::stod(t.rows.back().at(1 + 2 * k)) / drms, 1.0, 1e-3);
+    EXPECT_EQ(t.rows.back().at(2 + 2 * k), "100");
+  }
+  pipeline::DriftBudget none = b;
+  none.report_time.assign(b.time_s.size(), false);
+  EXPECT_TRUE(drift_budget_table(none).rows.empty());
 }
 
 TEST(NumberCell, SignificantDigitsOrADashWhenNotFinite) {

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -436,6 +437,10 @@ TEST(SvgPlot, BadInputsThrow) {
   test::expect_throw_containing<InputError>([&] { render_svg(p); }, "y_low and y_high");
   p.series[0].y_high = {1.5, 2.5};
   EXPECT_NO_THROW(render_svg(p));
+  p.series[0].fill_base = {0.0};
+  test::expect_throw_containing<InputError>([&] { render_svg(p); },
+                                            "fill_base must be empty or have 2 values (got 1)");
+  p.series[0].fill_base.clear();
   p.x = {"x", Scale::log10, 0.0, {}};
   test::expect_throw_containing<InputError>([&] { render_svg(p); },
                                             "x axis min must be finite and > 0");
@@ -444,6 +449,36 @@ TEST(SvgPlot, BadInputsThrow) {
   p.x = {"x", Scale::linear, {}, {}};
   p.y = {"y", Scale::linear, {}, kNaN};
   test::expect_throw_containing<InputError>([&] { render_svg(p); }, "y axis max must be finite");
+}
+
+TEST(SvgPlot, FilledBandIsOnePolygonPerPlottableRunUnderItsLine) {
+  // A band from fill_base up to y: a NaN breaks it into two closed polygons (the top edge
+  // forward, the base edge back), drawn before the line and clipped to the area; on a log y
+  // axis a base of 0 is not plottable, so nothing of that point is filled.
+  Plot p;
+  p.id = "band";
+  p.x = {"t", Scale::linear, 0.0, 10.0};
+  p.y = {"share", Scale::linear, 0.0, 100.0};
+  Series s;
+  s.name = "stacked";
+  s.x = {1, 2, 3, 5, 6, 7};
+  s.y = {50, 60, 70, kNaN, 80, 90};
+  s.fill_base = {10, 20, 30, 40, 40, 40};
+  s.fill_opacity = 0.5;
+  p.series.push_back(s);
+  const std::string svg = render_svg(p);
+  EXPECT_TRUE(check_xml(svg).ok);
+  const std::size_t fill = svg.find("fill-opacity=\"0.5\"");
+  ASSERT_NE(fill, std::string::npos);
+  const std::size_t end = svg.find("/>", fill);
+  const std::string band = svg.substr(fill, end - fill);
+  EXPECT_NE(band.find("clip-path=\"url(#band-area)\""), std::string::npos);
+  EXPECT_EQ(std::count(band.begin(), band.end(), 'M'), 2);
+  EXPECT_EQ(std::count(band.begin(), band.end(), 'Z'), 2);
+  EXPECT_LT(fill, svg.find("stroke-linejoin"));  // the band below the line
+  p.y = {"share", Scale::log10, {}, {}};
+  p.series[0].fill_base = {0, 0, 0, 0, 0, 0};
+  EXPECT_EQ(render_svg(p).find("fill-opacity=\"0.5\""), std::string::npos);
 }
 
 TEST(SvgPlot, LargeSeriesRendersFast) {

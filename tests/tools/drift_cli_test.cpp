@@ -6,9 +6,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "common/sensor_kind.h"
 #include "test_support.h"
@@ -106,6 +108,29 @@ TEST(DriftCli, WritesSegmentsEnvelopeAndSummary) {
     EXPECT_GT(c["monte_carlo_radial_rms_m"].get<double>(), 0.0);
   }
   EXPECT_TRUE(j["motion_check"]["stationary"].get<bool>());
+}
+
+TEST(DriftCli, LongSegmentsReportAtThirtyMinutesAndTheReportHasTheBudget) {
+  // 65 min at 20 Hz hold two segments of 60 s + 30 min: the default report times within the
+  // segment are 1, 5, 10 and 30 min (1 h needs segments that long). The report shows the
+  // budget table and the stacked budget plot from drift_budget.csv.
+  const auto f = prepare("drift-long", "", "65min");
+  const auto out = f.dir / "drift";
+  const auto r = run_imunoise("drift " + f.recording.string() + " --model " + f.model.string() +
+                              " --heading 0 --segment 30min --monte-carlo 0 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out / "drift_summary.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["protocol"]["segments"], 2);
+  std::vector<double> times;
+  for (const auto& c : j["consistency"]) times.push_back(c["time_s"].get<double>());
+  EXPECT_EQ(times, (std::vector<double>{60.0, 300.0, 600.0, 1800.0}));
+  EXPECT_EQ(first_line(out / "drift_budget.csv").rfind("time_s,report_time,white_noise", 0), 0u);
+  std::ifstream page(out / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), {});
+  EXPECT_NE(html.find("id=\"drift-budget-table\""), std::string::npos);
+  EXPECT_NE(html.find("id=\"fig-drift-budget\""), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out / "plots" / "drift-budget.svg"));
 }
 
 TEST(DriftCli, RefusesAMovingRecordingUnlessForced) {

@@ -152,9 +152,11 @@ TEST_F(ReportCli, DriftResultsJoinTheReportOfTheAnalysisDirectory) {
 
   const auto r = run_imunoise("report " + out_.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("(6 figures)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(7 figures)"), std::string::npos) << r.out;  // drift + its budget
   const std::string html = read_all(out_ / "report.html");
   EXPECT_NE(html.find("<figure id=\"fig-drift-horizontal\">"), std::string::npos);
+  EXPECT_NE(html.find("<figure id=\"fig-drift-budget\">"), std::string::npos);
+  EXPECT_EQ(count_of(table_text(html, "drift-budget-table"), "<tr>"), 1u + 7u + 1u);  // sources
   EXPECT_EQ(count_of(table_text(html, "drift-table"), "<tr>"), 1u + 2u);  // 30 s and 90 s
   EXPECT_NE(html.find("drift/drift_summary.json ("), std::string::npos);
   EXPECT_NE(html.find("# drift/commands.txt"), std::string::npos);

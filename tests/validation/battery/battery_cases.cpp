@@ -95,6 +95,10 @@ BatteryCase base_case(const std::string& class_name, const Grade& g, BatterySize
     rate = std::min(rate, 100.0);
     duration = 1200.0;
   }
+  if (size == BatterySize::long_record) {
+    rate = std::min(rate, 100.0);
+    duration = std::max(duration, 6.0 * 3600.0);
+  }
   c.spec.rate_hz = rate;
   c.spec.samples = static_cast<std::size_t>(std::llround(rate * duration));
   for (int ch = 0; ch < 6; ++ch) {

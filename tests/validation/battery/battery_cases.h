@@ -61,8 +61,10 @@ struct BatteryCase {
   bool write_stamps = false;  ///< write the stamps (as CSV with a time column), else a fixed rate
 };
 
-/// Sizes: `full` is the closing-note battery, `reduced` the ctest one (rate ≤ 100 Hz, 20 min).
-enum class BatterySize { full, reduced };
+/// Sizes: `full` is the closing-note battery, `reduced` the ctest one (rate ≤ 100 Hz, 20 min),
+/// `long_record` every class at rate ≤ 100 Hz for at least 6 h (the drift validation of
+/// issue 25: free-inertial segments up to 30 min, judged on each half).
+enum class BatterySize { full, reduced, long_record };
 
 /// The class names, in table order.
 std::vector<std::string> battery_classes();

@@ -6,7 +6,7 @@
 /// default flags plus any given after `--`, reads DIR/model.yaml (io/noise_model_yaml.h) and scores
 /// it against the truth. Writes rows.csv, recordings.csv and summary.md to --out.
 ///
-///   battery_runner [--size full|reduced] [--classes all|a,b,…] [--seeds N] [--first-seed S]
+///   battery_runner [--size full|reduced|long] [--classes all|a,b,…] [--seeds N] [--first-seed S]
 ///                  [--out DIR] [--imunoise PATH] [--keep] [--check] [--acceptance]
 ///                  [--describe]
 ///                  [-- ANALYZE_FLAGS…]
@@ -83,8 +83,11 @@ Options parse(int argc, char** argv) {
       for (++i; i < argc; ++i) o.analyze_flags.push_back(argv[i]);
     } else if (a == "--size") {
       const std::string v = value();
-      if (v != "full" && v != "reduced") throw std::invalid_argument("--size full|reduced");
-      o.size = v == "full" ? BatterySize::full : BatterySize::reduced;
+      if (v != "full" && v != "reduced" && v != "long")
+        throw std::invalid_argument("--size full|reduced|long");
+      o.size = v == "full"      ? BatterySize::full
+               : v == "reduced" ? BatterySize::reduced
+                                : BatterySize::long_record;
     } else if (a == "--classes") {
       const std::string v = value();
       if (v != "all") o.classes = split(v, ',');
@@ -306,8 +309,10 @@ int main(int argc, char** argv) {
     std::string flags;
     for (const std::string& f : o.analyze_flags) flags += " " + f;
     const std::string title = std::string("Battery (") +
-                              (o.size == BatterySize::full ? "full" : "reduced") + " size, seeds " +
-                              std::to_string(o.first_seed) + "–" +
+                              (o.size == BatterySize::full      ? "full"
+                               : o.size == BatterySize::reduced ? "reduced"
+                                                                : "long") +
+                              " size, seeds " + std::to_string(o.first_seed) + "–" +
                               std::to_string(o.first_seed + o.seeds - 1) +
                               ", analyze flags:" + (flags.empty() ? " default" : flags) + ")";
     write_text(o.out / "rows.csv", rows_csv(results));

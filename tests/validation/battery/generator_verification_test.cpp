@@ -419,7 +419,7 @@ TEST(BatteryGenerator, SharesNoCodeWithImunoise) {
 
 TEST(BatteryCases, EveryClassBuildsAndItsTruthIsConsistent) {
   for (const std::string& name : battery_classes()) {
-    for (BatterySize size : {BatterySize::full, BatterySize::reduced}) {
+    for (BatterySize size : {BatterySize::full, BatterySize::reduced, BatterySize::long_record}) {
       const BatteryCase c = make_case(name, size, 1);
       EXPECT_GE(c.spec.samples, 100000u) << name;
       const double length = static_cast<double>(c.spec.samples) / c.spec.rate_hz;
