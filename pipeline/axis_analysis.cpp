@@ -202,6 +202,43 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
   }
 }
 
+PerTerm<double> selection_upper_bounds(std::span<const analysis::FitPoint> points,
+                                       const analysis::FitResult& fit,
+                                       std::span<const std::int64_t> m_list, double tau0_s,
+                                       std::int64_t total_samples, double confidence,
+                                       int weight_iterations) {
+  // The correlation of the variance estimates at the fitted points under the fitted model
+  // (analysis/variance_covariance.h).
+  std::vector<double> used_correlation;
+  std::vector<std::int64_t> used_m;
+  for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
+  if (!used_m.empty()) {
+    const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
+        fit.coefficients, tau0_s, total_samples, used_m, fit.hadamard);
+    const std::size_t n = used_m.size();
+    used_correlation.assign(n * n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) {
+        const double vi = vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+        const double vj = vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
+        used_correlation[i * n + j] =
+            vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
+                ? vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
+                      std::sqrt(vi * vj)
+                : (i == j ? 1.0 : 0.0);
+      }
+    }
+  }
+  PerTerm<double> upper_bounds{};
+  for (NoiseTerm term : kNoiseTerms) {
+    upper_bounds[term] = fit.terms[term].identified
+                             ? 0.0
+                             : analysis::profile_upper_bound(points, fit, term, confidence,
+                                                             weight_iterations, used_correlation);
+  }
+  return upper_bounds;
+}
+
 double low_pass_tau_min(const analysis::DeviationCurve& oadev) {
   constexpr double kLowPassStartFactor = 50.0;
   const auto& pts = oadev.points;
@@ -399,43 +436,12 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     intervals = analysis::least_squares_intervals(points, out.fit, options.confidence);
     interval_method = "weighted least squares covariance (ignores inter-tau correlation)";
   }
-  // The correlation of the OAVAR estimates at the fitted points under the fitted model
-  // (analysis/variance_covariance.h), for the upper bounds of the terms not identified.
-  std::vector<double> used_correlation;
-  {
-    std::vector<std::int64_t> used_m;
-    for (std::size_t k : out.fit.used) used_m.push_back(m_oadev[k]);
-    if (!used_m.empty()) {
-      const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
-          out.fit.coefficients, tau0_s, total_samples, used_m, out.fit.hadamard);
-      const std::size_t n = used_m.size();
-      used_correlation.assign(n * n, 0.0);
-      for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = 0; j < n; ++j) {
-          const double vi =
-              vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
-          const double vj =
-              vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
-          used_correlation[i * n + j] =
-              vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
-                  ? vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
-                        std::sqrt(vi * vj)
-                  : (i == j ? 1.0 : 0.0);
-        }
-      }
-    }
-  }
   // Upper bounds of the terms not identified, then the identified terms' intervals widened
   // by them (analysis/selection_uncertainty.h): dropping K must not leave B's interval
   // conditional on K = 0 when the data allow K up to its bound.
-  PerTerm<double> upper_bounds{};
-  for (NoiseTerm term : kNoiseTerms) {
-    upper_bounds[term] =
-        out.fit.terms[term].identified
-            ? 0.0
-            : analysis::profile_upper_bound(points, out.fit, term, options.confidence,
-                                            fit_options.weight_iterations, used_correlation);
-  }
+  const PerTerm<double> upper_bounds =
+      selection_upper_bounds(points, out.fit, m_oadev, tau0_s, total_samples, options.confidence,
+                             fit_options.weight_iterations);
   const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
       points, out.fit, intervals, upper_bounds, fit_options.weight_iterations);
   for (NoiseTerm term : kNoiseTerms) {

@@ -97,6 +97,19 @@ int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard);
 /// lag-1 identification (which is unreliable with few points at large m).
 void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoefficients& c);
 
+/// The profile upper bound of every term FIT did not identify (0 for identified terms), as the
+/// analysis reports it and widens the identified terms' intervals with
+/// (analysis::selection_widened_intervals, model-selection uncertainty):
+/// analysis::profile_upper_bound with the correlation of the variance estimates at FIT.used
+/// under FIT's model (analysis/variance_covariance.h). M_LIST[k] is the averaging factor of
+/// POINTS[k]; the record has TOTAL_SAMPLES samples at period TAU0_S. Shared by analyze_axis
+/// and the recording plan (pipeline/recording_plan.h), so both widen the same way.
+PerTerm<double> selection_upper_bounds(std::span<const analysis::FitPoint> points,
+                                       const analysis::FitResult& fit,
+                                       std::span<const std::int64_t> m_list, double tau0_s,
+                                       std::int64_t total_samples, double confidence,
+                                       int weight_iterations);
+
 /// The first τ index not affected by a sensor low-pass: leading points whose σ²·τ is below
 /// 0.8× that of the next point (the curve bends under the N/√τ line), looking only at
 /// τ ≤ 8·τ0 where a digital anti-alias filter acts; when any is, the fit starts 50 times

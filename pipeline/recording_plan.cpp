@@ -7,6 +7,7 @@
 
 #include "analysis/deviation.h"
 #include "analysis/noise_terms.h"
+#include "analysis/selection_uncertainty.h"
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "common/parallel_for.h"
@@ -170,28 +171,45 @@ PerTerm<TermPrecision> expected_precision(const NoiseCoefficients& model, double
     draws.threads = 1;
     const BootstrapResult replicates =
         bootstrap_fit(fit, points, m_list, n_samples, tau0_s, fit_options, draws);
+    // 4. Each set's intervals widened by model-selection uncertainty as analyze widens its
+    // own (pipeline/axis_analysis.h selection_upper_bounds, analysis/selection_uncertainty.h):
+    // a term the fit drops (Q, R, K) held at its profile upper bound moves the identified
+    // terms — R's bound widens K's interval most, both living at the longest τ.
+    const PerTerm<double> upper_bounds = selection_upper_bounds(
+        points, fit, m_list, tau0_s, n_samples, options.confidence, fit_options.weight_iterations);
     const auto per_set = static_cast<std::size_t>(options.interval_draws);
-    for (NoiseTerm term : kNoiseTerms) {
-      const analysis::TermFit& t = fit.terms[term];
-      TermPrecision& p = out[term];
-      p.identified = t.identified && t.value > 0.0;
-      if (!p.identified) continue;
-      std::vector<double> widths;
-      for (std::size_t first = 0; first + per_set <= replicates.term_samples.size();
-           first += per_set) {
+    PerTerm<std::vector<double>> widths;
+    for (std::size_t first = 0; first + per_set <= replicates.term_samples.size();
+         first += per_set) {
+      PerTerm<Interval> intervals{};
+      for (NoiseTerm term : kNoiseTerms) {
+        const analysis::TermFit& t = fit.terms[term];
+        if (!(t.identified && t.value > 0.0)) continue;
         std::vector<double> values;
         for (std::size_t r = first; r < first + per_set; ++r) {
           values.push_back(replicates.term_samples[r][term]);
         }
-        const Interval interval = bootstrap_interval(t.value, values, options.confidence);
-        const double low = std::min(interval.low, t.value);
-        const double high = std::max(interval.high, t.value);
-        widths.push_back((high - low) / (2.0 * t.value));
+        intervals[term] = bootstrap_interval(t.value, values, options.confidence);
       }
-      if (widths.empty()) continue;  // most draws failed to refit: no interval
-      std::sort(widths.begin(), widths.end());
-      const std::size_t n = widths.size();
-      p.relative_halfwidth = n % 2 == 1 ? widths[n / 2] : 0.5 * (widths[n / 2 - 1] + widths[n / 2]);
+      const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
+          points, fit, intervals, upper_bounds, fit_options.weight_iterations);
+      for (NoiseTerm term : kNoiseTerms) {
+        const analysis::TermFit& t = fit.terms[term];
+        if (!(t.identified && t.value > 0.0)) continue;
+        const double low = std::min(widened[term].interval.low, t.value);
+        const double high = std::max(widened[term].interval.high, t.value);
+        widths[term].push_back((high - low) / (2.0 * t.value));
+      }
+    }
+    for (NoiseTerm term : kNoiseTerms) {
+      const analysis::TermFit& t = fit.terms[term];
+      TermPrecision& p = out[term];
+      p.identified = t.identified && t.value > 0.0;
+      std::vector<double>& w = widths[term];
+      if (!p.identified || w.empty()) continue;  // most draws failed to refit: no interval
+      std::sort(w.begin(), w.end());
+      const std::size_t n = w.size();
+      p.relative_halfwidth = n % 2 == 1 ? w[n / 2] : 0.5 * (w[n / 2 - 1] + w[n / 2]);
     }
   } catch (const AnalysisError&) {
     // Too short for any fit, or no draw could be refitted: nothing identified.

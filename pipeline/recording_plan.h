@@ -11,9 +11,12 @@
 /// those noise-free points (a term the selection keeps there is "identified": its expected
 /// deviance drop exceeds the fit's penalty), then the fit's own interval draws — OAVAR vectors
 /// drawn from their covariance across τ under the fitted model and refitted with the same
-/// structure (ReplicateSource::variance_distribution, 200 draws, the analysis's seed). The
-/// relative half-width of a term is (high − low)/(2·estimate) of that interval, the median
-/// over 5 sets of 200 draws (the first set is the analysis's own).
+/// structure (ReplicateSource::variance_distribution, 200 draws, the analysis's seed), each
+/// set's intervals widened by model-selection uncertainty as analyze widens its own (the
+/// terms the fit drops held at their profile upper bounds: selection_upper_bounds in
+/// pipeline/axis_analysis.h, analysis/selection_uncertainty.h). The relative half-width of a
+/// term is (high − low)/(2·estimate) of that interval, the median over 5 sets of 200 draws
+/// (the first set is the analysis's own).
 /// Pure computation: no files, no flags (messages name the caller's setting).
 #pragma once
 
