@@ -9,6 +9,8 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "analysis/chi_square.h"
 #include "common/errors.h"
@@ -49,29 +51,85 @@ void check_model(const NoiseCoefficients& model, double f_hz, double tau0_s) {
   }
 }
 
-/// @name The S₁ rows of theory.md §5.3 (one-sided, §1.3 coefficients)
+/// @name The S₁ of the sampled rate record, one row per term (docs/conventions.md §4.1)
+/// The record is y_k = (θ_{k+1} − θ_k)/τ0: each rate sample is the average of the continuous
+/// rate over its interval (an angle increment over τ0), so its one-sided PSD on [0, 1/(2τ0)]
+/// is S₁(f) = Σ_k S₁c(f + k/τ0)·sinc²(π(f + k/τ0)τ0) — the continuous law S₁c of theory.md
+/// §5.3 folded at Nyquist after the τ0 boxcar. With x = fτ0 and s = sin(πx), since
+/// sin²(π(x + k)) = s² for every k, each fold sum is a closed form or a Hurwitz zeta. These are
+/// the spectra whose sampled AVAR, 2∫₀^{1/2τ0} S₁ sin⁴(πfmτ0)/(m² sin²(πfτ0)) df, is exactly the
+/// continuous AVAR of theory.md §4.1 at τ = mτ0, i.e. the model the fit uses
+/// (tests/analysis/psd_model_test.cpp checks both and each against a simulated record).
+/// Above Nyquist a sampled record has no density: every row is 0 there.
 /// @{
-/// Q in its sampled form: the rate samples are differences of a white angle sequence of
-/// variance Q² over τ0, so S₁ = 2·|1 − e^{−i2πfτ0}|²·Q²τ0/τ0² = 8 sin²(πfτ0)·Q²/τ0 on
-/// [0, 1/(2τ0)]. It is theory.md §4.1's continuous (2πf)²τ0Q² (doubled to one-sided) where
-/// fτ0 ≪ 1 and 4/π² = 0.405 of it at Nyquist, where the continuous law made a complete model
-/// fail its cross-check on quantized angle increments (issue 20). With the sampled AVAR kernel
-/// it integrates to 3Q²/τ² exactly.
-double quantization_psd(double q, double f, double tau0) {
-  if (f > 0.5 / tau0) return 0.0;
-  const double s = std::sin(kPi * f * tau0);
-  return 8.0 * s * s * q * q / tau0;
-}
+
+/// Q: white angle error of σ = Q on each angle sample, differenced: S₁ = 2τ0·|1 − e^{−i2πx}|²
+/// ·Q²/τ0² = 8 sin²(πx)·Q²/τ0. It is theory.md §4.1's continuous (2πf)²τ0Q² (doubled to
+/// one-sided) where x ≪ 1 and 4/π² = 0.405 of it at Nyquist, where the continuous law made a
+/// complete model fail its cross-check on quantized angle increments (issue 20).
+double quantization_psd(double q, double s, double tau0) { return 8.0 * s * s * q * q / tau0; }
+
+/// N: averages of white noise of S₁c = 2N² are white with variance N²/τ0: S₁ = 2N², exact.
 double white_psd(double n) { return 2.0 * n * n; }
-double flicker_psd(double b, double f) { return b * b / (kPi * f); }
-double random_walk_psd(double k, double f) { return k * k / (2.0 * kPi * kPi * f * f); }
-double ramp_psd(double r, double f) {
-  const double w = kTwoPi * f;
-  return 2.0 * r * r / (w * w * w);
+
+/// ζ(3, a) + ζ(3, 1 − a) = Σ_{k∈ℤ} |a + k|⁻³ for 0 < a ≤ 1/2: ten terms of each series, then
+/// the Euler–Maclaurin tail Σ_{j≥0} (b + j)⁻³ = 1/(2b²) + 1/(2b³) + 1/(4b⁴) − 1/(12b⁶) +
+/// 1/(12b⁸) + O(0.15/b¹⁰) at b ≥ 10, i.e. a relative error below 1e-11.
+double two_sided_zeta3(double a) {
+  const auto series = [](double start) {
+    double sum = 0.0;
+    for (int k = 0; k < 10; ++k) {
+      const double t = start + k;
+      sum += 1.0 / (t * t * t);
+    }
+    const double b = start + 10.0, b2 = b * b, b4 = b2 * b2;
+    return sum + 0.5 / b2 + 0.5 / (b2 * b) + 0.25 / b4 - 1.0 / (12.0 * b4 * b2) +
+           1.0 / (12.0 * b4 * b4);
+  };
+  return series(a) + series(1.0 - a);
 }
-double gauss_markov_psd(const GaussMarkov& gm, double f) {
-  const double x = kTwoPi * f * gm.tau_c_s;
-  return 4.0 * gm.sigma * gm.sigma * gm.tau_c_s / (1.0 + x * x);
+
+/// B: S₁c = B²/(πf) folded: S₁ = (B²τ0/π)·(s²/π²)·Σ_k |x + k|⁻³ = (B²τ0/π³)·s²·[ζ(3, x) +
+/// ζ(3, 1 − x)] → B²/(πf) where x ≪ 1; 0.77 of it at 0.4/τ0 and 7ζ(3)/π² = 0.853 at Nyquist.
+double flicker_psd(double b, double x, double s, double tau0) {
+  return b * b * tau0 / (kPi * kPi * kPi) * s * s * two_sided_zeta3(x);
+}
+
+/// K: S₁c = K²/(2π²f²) folded, with Σ_k (x + k)⁻⁴ = (π⁴/3)(2 + cos 2πx)/s⁴:
+/// S₁ = K²τ0²(2 + cos 2πx)/(6s²) → K²/(2π²f²) where x ≪ 1, 0.69 of it at 0.4/τ0 and π²/12 = 0.822
+/// at Nyquist. A point-sampled discrete walk of step K√τ0 (theory.md §1.4) has K²τ0²/(2s²), i.e.
+/// this plus a white K²τ0²/3 (an N² of K²τ0²/6, which its AVAR (2m² + 1)K²τ0/(6m) shows too).
+double random_walk_psd(double k, double x, double s, double tau0) {
+  return k * k * tau0 * tau0 * (2.0 + std::cos(kTwoPi * x)) / (6.0 * s * s);
+}
+
+/// R: the ramp is deterministic. A rate R·t has no density: after each Welch segment's mean
+/// removal its Hann-windowed remainder R(t − t_mid) has DFT magnitude falling as k⁻³ (the
+/// window and its slope vanish at both ends), so beyond the ±2-bin main lobe that
+/// cross_check_psd() skips it leaves nothing a bin resolves. It is therefore not in the model
+/// PSD (theory.md §5.3's 2R²/(2πf)³ is the spectrum of a random process with R's AVAR, which a
+/// drifting rate is not).
+double ramp_psd() { return 0.0; }
+
+/// GM: the τ0-averages of a stationary first-order Gauss–Markov process (autocovariance
+/// σ²e^{−|t|/T}), with r = τ0/T and φ = e^{−r}, have the autocovariance
+///   c₀ = 2σ²(1/r)[1 − (1 − φ)/r],   c_j = Aφ^{|j|} (j ≠ 0),   A = σ²(1 − φ)²/(φr²),
+/// (∫∫ of σ²e^{−|t−u|/T} over two intervals), so
+///   S₁ = 2τ0[(c₀ − A) + A(1 − φ²)/((1 − φ)² + 4φs²)]:
+/// an AR(1) spectrum of variance A plus a negative white 2τ0(c₀ − A) ≈ −(2/3)σ²τ0r. It tends to
+/// 4σ²T at DC and to 4σ²T/(1 + (2πfT)²) where r ≪ 1 and x ≪ 1. A point-sampled AR(1) (the exact
+/// discrete GM) is this with σ² → σ²·(r/2)²/sinh²(r/2) plus a white ≈ (2/3)σ²τ0r, again an N
+/// the fit absorbs.
+double gauss_markov_psd(const GaussMarkov& gm, double s, double tau0) {
+  const double r = tau0 / gm.tau_c_s;
+  const double one_minus_phi = -std::expm1(-r);
+  const double phi = 1.0 - one_minus_phi;
+  const double var = gm.sigma * gm.sigma;
+  const double c0 = 2.0 * var / r * (1.0 - one_minus_phi / r);
+  const double a = var * one_minus_phi * one_minus_phi / (phi * r * r);
+  const double ar1 =
+      a * -std::expm1(-2.0 * r) / (one_minus_phi * one_minus_phi + 4.0 * phi * s * s);
+  return 2.0 * tau0 * ((c0 - a) + ar1);
 }
 /// @}
 
@@ -164,6 +222,105 @@ PsdReadoffTerm read_term(const Spectrum& s, const Run* run, int slope, double ta
   return term;
 }
 
+/// One bin of cross_check_psd(): its frequency, measured/model and verdict.
+struct ComparedBin {
+  double f_hz = 0.0;
+  double ratio = 1.0;
+  bool outside = false;
+};
+
+/// A narrow excess [FIRST, LAST] is a line when it is at least kLineRatio above the model
+/// and the compared bins next to it carry at most a third of its excess (a local peak, not a
+/// piece of a broad misfit).
+constexpr double kLineRatio = 1.5;
+bool is_peak(const std::vector<ComparedBin>& bins, std::size_t first, std::size_t last,
+             double extreme) {
+  if (!(extreme >= kLineRatio)) return false;
+  const double side = 1.0 + (extreme - 1.0) / 3.0;
+  if (first > 0 && bins[first - 1].ratio > side) return false;
+  if (last + 1 < bins.size() && bins[last + 1].ratio > side) return false;
+  return true;
+}
+
+/// The bands of a failed check (rules in psd_model.h, cross_check_psd()).
+std::vector<PsdMisfitBand> misfit_bands(std::vector<ComparedBin> bins) {
+  std::sort(bins.begin(), bins.end(),
+            [](const ComparedBin& a, const ComparedBin& b) { return a.f_hz < b.f_hz; });
+  const std::size_t n = bins.size();
+  std::vector<PsdMisfitBand> out;
+  std::size_t i = 0;
+  while (i < n) {
+    if (!bins[i].outside) {
+      ++i;
+      continue;
+    }
+    const bool above = bins[i].ratio > 1.0;
+    const auto same_side = [&](std::size_t k) { return (bins[k].ratio > 1.0) == above; };
+    std::size_t first = i, last = i, count = 1;
+    double extreme = bins[i].ratio;
+    const auto farther = [](double a, double b) {
+      return std::fabs(std::log(a)) > std::fabs(std::log(b));
+    };
+    for (std::size_t k = i + 1; k < n; ++k) {
+      if (bins[k].outside && same_side(k)) {
+        last = k;
+        ++count;
+        if (farther(bins[k].ratio, extreme)) extreme = bins[k].ratio;
+        continue;
+      }
+      // Bridge one inside bin on the same side when an outside bin on that side follows.
+      if (!bins[k].outside && same_side(k) && k + 1 < n && bins[k + 1].outside &&
+          same_side(k + 1)) {
+        continue;
+      }
+      break;
+    }
+    PsdMisfitBand band;
+    band.f_low_hz = bins[first].f_hz;
+    band.f_high_hz = bins[last].f_hz;
+    band.bins = count;
+    band.above = above;
+    band.extreme_ratio = extreme;
+    // Mean log ratio of the lower and upper half of the band's outside bins: a flat band is
+    // a level error, a trend a roll-off or an excess growing towards one end.
+    std::vector<double> logs;
+    for (std::size_t k = first; k <= last; ++k)
+      if (bins[k].outside) logs.push_back(std::log(bins[k].ratio));
+    const std::size_t half = logs.size() / 2;
+    double lower = 0.0, upper = 0.0;
+    for (std::size_t k = 0; k < logs.size(); ++k)
+      (k < (logs.size() + 1) / 2 ? lower : upper) += logs[k];
+    lower /= static_cast<double>((logs.size() + 1) / 2);
+    upper = half > 0 ? upper / static_cast<double>(half) : lower;
+    const bool flat = logs.size() >= 4 && std::fabs(upper - lower) <=
+                                              0.3 * std::max(std::fabs(lower), std::fabs(upper));
+    const bool bottom = first <= 1, top = last + 2 >= n, wide = 2 * count > n;
+    const PsdMisfitCause low =
+        above ? PsdMisfitCause::low_frequency_excess : PsdMisfitCause::low_frequency_deficit;
+    const PsdMisfitCause high =
+        above ? PsdMisfitCause::high_frequency_excess : PsdMisfitCause::low_pass;
+    if (bottom && top) {
+      band.cause =
+          flat ? PsdMisfitCause::level : (std::fabs(lower) > std::fabs(upper) ? low : high);
+    } else if (bottom) {
+      band.cause = low;
+    } else if (last - first + 1 <= 2 && is_peak(bins, first, last, extreme)) {
+      band.cause = PsdMisfitCause::spectral_line;
+    } else if (count == 1 && !top) {
+      band.cause = PsdMisfitCause::isolated;
+    } else if (top) {
+      band.cause = flat ? PsdMisfitCause::level : high;
+    } else if (wide && flat) {
+      band.cause = PsdMisfitCause::level;
+    } else {
+      band.cause = above ? PsdMisfitCause::band_excess : PsdMisfitCause::band_deficit;
+    }
+    out.push_back(band);
+    i = last + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 double PsdTerms::total() const {
@@ -177,24 +334,32 @@ double PsdTerms::total() const {
 PsdTerms model_psd_terms(const NoiseCoefficients& model, double f_hz, double tau0_s) {
   check_model(model, f_hz, tau0_s);
   PsdTerms t;
-  t.terms[NoiseTerm::quantization] = quantization_psd(model.quantization, f_hz, tau0_s);
+  t.gauss_markov.assign(model.gauss_markov.size(), 0.0);
+  const double x = f_hz * tau0_s;
+  if (x > 0.5) return t;  // no density above Nyquist
+  const double s = std::sin(kPi * x);
+  t.terms[NoiseTerm::quantization] = quantization_psd(model.quantization, s, tau0_s);
   t.terms[NoiseTerm::white_noise] = white_psd(model.white_noise);
-  t.terms[NoiseTerm::bias_instability] = flicker_psd(model.bias_instability, f_hz);
-  t.terms[NoiseTerm::random_walk] = random_walk_psd(model.random_walk, f_hz);
-  t.terms[NoiseTerm::ramp] = ramp_psd(model.ramp, f_hz);
-  t.gauss_markov.reserve(model.gauss_markov.size());
-  for (const GaussMarkov& gm : model.gauss_markov) {
-    t.gauss_markov.push_back(gauss_markov_psd(gm, f_hz));
+  t.terms[NoiseTerm::bias_instability] = flicker_psd(model.bias_instability, x, s, tau0_s);
+  t.terms[NoiseTerm::random_walk] = random_walk_psd(model.random_walk, x, s, tau0_s);
+  t.terms[NoiseTerm::ramp] = ramp_psd();
+  for (std::size_t j = 0; j < model.gauss_markov.size(); ++j) {
+    t.gauss_markov[j] = gauss_markov_psd(model.gauss_markov[j], s, tau0_s);
   }
   return t;
 }
 
 double model_psd_one_sided(const NoiseCoefficients& model, double f_hz, double tau0_s) {
   check_model(model, f_hz, tau0_s);
-  double sum = quantization_psd(model.quantization, f_hz, tau0_s) + white_psd(model.white_noise) +
-               flicker_psd(model.bias_instability, f_hz) +
-               random_walk_psd(model.random_walk, f_hz) + ramp_psd(model.ramp, f_hz);
-  for (const GaussMarkov& gm : model.gauss_markov) sum += gauss_markov_psd(gm, f_hz);
+  const double x = f_hz * tau0_s;
+  if (x > 0.5) return 0.0;
+  const double s = std::sin(kPi * x);
+  double sum = quantization_psd(model.quantization, s, tau0_s) + white_psd(model.white_noise) +
+               random_walk_psd(model.random_walk, x, s, tau0_s) + ramp_psd();
+  if (model.bias_instability > 0.0) {
+    sum += flicker_psd(model.bias_instability, x, s, tau0_s);
+  }
+  for (const GaussMarkov& gm : model.gauss_markov) sum += gauss_markov_psd(gm, s, tau0_s);
   return sum;
 }
 
@@ -226,6 +391,7 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
 
   PsdCrossCheck check;
   check.f_min_hz = std::numeric_limits<double>::infinity();
+  std::vector<ComparedBin> compared;
   for (std::size_t i = 0; i < binned.frequency_hz.size(); ++i) {
     const double f = binned.frequency_hz[i];
     if (!(f >= f_low && f <= f_high)) continue;
@@ -269,6 +435,7 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
     if (!(expected > 0.0) || !(measured > 0.0)) {
       ++check.bins_outside;
       check.worst_log10_ratio = std::numeric_limits<double>::infinity();
+      compared.push_back({f, measured > 0.0 ? std::numeric_limits<double>::infinity() : 0.0, true});
       continue;
     }
     const double ratio = measured / expected;
@@ -276,7 +443,9 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
     // ν·Ŝ/S ~ χ²_ν under the model: two-sided 99 % acceptance interval of the ratio.
     const double lower = chi_square_quantile(0.005, nu) / nu;
     const double upper = chi_square_upper_quantile(0.005, nu) / nu;
-    if (ratio < lower || ratio > upper) ++check.bins_outside;
+    const bool outside = ratio < lower || ratio > upper;
+    if (outside) ++check.bins_outside;
+    compared.push_back({f, ratio, outside});
   }
   if (check.bins_compared == 0) {
     throw AnalysisError("cross_check_psd: no spectrum bin between " + text(f_low) + " and " +
@@ -285,6 +454,7 @@ PsdCrossCheck cross_check_psd(const Spectrum& binned, const NoiseCoefficients& m
   const std::size_t allowed =
       std::max<std::size_t>(2, static_cast<std::size_t>(0.05 * check.bins_compared));
   check.pass = check.bins_outside <= allowed;
+  if (!check.pass) check.misfits = misfit_bands(std::move(compared));
   return check;
 }
 

@@ -19,17 +19,27 @@ namespace imunoise::analysis {
 
 /// The terms of S₁(f) separately, for plotting [unit²/Hz].
 struct PsdTerms {
-  /// Per term: Q 2(2πf)²τ0Q² for f ≤ f_s/2, else 0; N 2N²; B B²/(πf) (no low-frequency
-  /// cut-off f₀); K K²/(2π²f²); R 2R²/(2πf)³.
+  /// Per term, the PSD of the sampled record y_k = (θ_{k+1} − θ_k)/τ0 (each sample the
+  /// average of the rate over its interval; docs/conventions.md §4.1 derives each row), x = fτ0,
+  /// s = sin(πx), for 0 < f ≤ f_s/2 (all 0 above): Q 8s²Q²/τ0; N 2N²; B (B²τ0/π³)·s²·[ζ(3, x) +
+  /// ζ(3, 1 − x)] (Hurwitz ζ; no low-frequency cut-off f₀); K K²τ0²(2 + cos 2πx)/(6s²); R 0
+  /// (a deterministic ramp has no density). Where x ≪ 1 they are theory.md §5.3's continuous
+  /// 2(2πf)²τ0Q², 2N², B²/(πf), K²/(2π²f²); at 0.4·f_s Q, B and K are 0.57, 0.77 and 0.69
+  /// of those.
   PerTerm<double> terms{};
-  std::vector<double> gauss_markov;  ///< 4σ²T_c/(1 + (2πfT_c)²), one per model term
-  double total() const;              ///< sum of all terms
+  /// One per model term, the τ0-averaged Gauss–Markov: with r = τ0/T_c, φ = e^{−r},
+  /// 2τ0[(c₀ − A) + A(1 − φ²)/((1 − φ)² + 4φs²)], c₀ = 2σ²[1 − (1 − φ)/r]/r,
+  /// A = σ²(1 − φ)²/(φr²); 4σ²T_c/(1 + (2πfT_c)²) where r ≪ 1 and x ≪ 1.
+  std::vector<double> gauss_markov;
+  double total() const;  ///< sum of all terms
 };
 
 /// S₁ of each term at f (see PsdTerms). Sinusoids are lines, not densities: they carry
 /// power A²/2 at their frequency and no density anywhere, so they are left out here.
-/// @param[in] f_hz frequency, > 0 [Hz]
-/// @param[in] tau0_s sample interval τ0, > 0 [s] (sets the Q term and its f_s/2 cut-off)
+/// These sampled forms are the spectra whose AVAR at τ = mτ0 (the kernel of τ0-spaced
+/// samples) is exactly theory.md §4.1's, the model noise_fit fits.
+/// @param[in] f_hz frequency, > 0 [Hz]; above f_s/2 every term is 0
+/// @param[in] tau0_s sample interval τ0, > 0 [s]
 /// @throws ContractViolation for f or τ0 not positive and finite, a negative or non-finite
 /// coefficient, or a Gauss–Markov correlation time ≤ 0 (fitted or read models are valid).
 PsdTerms model_psd_terms(const NoiseCoefficients& model, double f_hz, double tau0_s);
@@ -41,6 +51,29 @@ double model_psd_one_sided(const NoiseCoefficients& model, double f_hz, double t
 /// @name Cross-check of a fitted model against a measured spectrum
 /// @{
 
+/// The likely cause of a band of bins outside their interval (cross_check_psd()).
+enum class PsdMisfitCause {
+  spectral_line,          ///< narrow peak (≤ 2 bins, ≥ 1.5×) away from the bottom: a line
+  isolated,               ///< one bin alone, not a peak: chance or a small local misfit
+  high_frequency_excess,  ///< above the model in the top band: aliasing, unmodelled HF noise
+  low_pass,               ///< below the model in the top band: the sensor's low-pass filter
+  low_frequency_excess,   ///< above at the bottom: a missing K or R, or a warm-up (non-stationary)
+  low_frequency_deficit,  ///< below at the bottom: a fitted K, R or B the spectrum does not show
+  level,                  ///< a flat offset over a wide band: the broadband level (N)
+  band_excess,            ///< above the model in a middle band: an unmodelled term there (GM bump)
+  band_deficit,           ///< below the model in a middle band: a fitted term too large there
+};
+
+/// A band of compared bins outside their 99 % interval on the same side of the model.
+struct PsdMisfitBand {
+  double f_low_hz = 0.0;       ///< lowest bin frequency of the band [Hz]
+  double f_high_hz = 0.0;      ///< highest bin frequency of the band [Hz]
+  std::size_t bins = 0;        ///< bins outside in the band
+  bool above = false;          ///< measured above the model
+  double extreme_ratio = 1.0;  ///< measured/model of the band's bin farthest from 1 (in log)
+  PsdMisfitCause cause = PsdMisfitCause::level;
+};
+
 /// Outcome of cross_check_psd().
 struct PsdCrossCheck {
   std::size_t bins_compared = 0;   ///< binned points inside the compared band
@@ -49,6 +82,8 @@ struct PsdCrossCheck {
   double f_min_hz = 0.0;           ///< lowest compared bin frequency [Hz]
   double f_max_hz = 0.0;           ///< highest compared bin frequency [Hz]
   bool pass = false;  ///< bins_outside ≤ max(2, ⌊0.05·bins_compared⌋), see cross_check_psd()
+  /// When the check fails: its bands of outside bins, in frequency order (empty on a pass).
+  std::vector<PsdMisfitBand> misfits;
 };
 
 /// Compares a measured spectrum with a model bin by bin: under the model, dof·S₁/S₁_model of
@@ -67,6 +102,20 @@ struct PsdCrossCheck {
 /// model compared on 30–60 bins has two or more outliers in 4–12 % of records; allowing
 /// max(2, ⌊5 % of the compared bins⌋) brings that below ~2.5 %. A wrong level pushes whole
 /// runs of high-dof bins outside, far beyond the allowance.
+///
+/// Diagnosis (a failed check only): the compared bins in frequency order are cut into bands,
+/// each a run of outside bins on the same side of the model that may bridge one inside bin on
+/// that side. A band is flat when it has ≥ 4 outside bins and the mean log ratio of their
+/// upper half is within 30 % of that of their lower half; it is at the bottom (top) when it
+/// touches the two lowest (highest) compared bins. Its likely cause (PsdMisfitCause): at both
+/// ends, level when flat, else the end with the larger mean log ratio decides as below; at the
+/// bottom, low_frequency_excess or _deficit; a peak of ≤ 2 bins elsewhere (≥ 1.5× the model,
+/// its neighbours within a third of that excess), spectral_line; any other single bin not at
+/// the top, isolated; at the top, level when flat, else high_frequency_excess (above) or
+/// low_pass (below);
+/// otherwise level when flat and over half the compared bins, else band_excess or
+/// band_deficit. Causes are likely, not proven: one low bin cannot tell a warm-up from a
+/// random walk.
 /// @param[in] binned log-binned (or raw, or multi-rate) Welch spectrum with dof
 /// @param[in] model  coefficients to test
 /// @param[in] tau0_s sample interval τ0 [s], > 0

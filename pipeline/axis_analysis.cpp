@@ -15,6 +15,7 @@
 #include "analysis/selection_uncertainty.h"
 #include "analysis/variance_covariance.h"
 #include "common/errors.h"
+#include "common/number_text.h"
 #include "models/bias_instability_gm.h"
 #include "pipeline/bootstrap.h"
 
@@ -542,12 +543,69 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
 
   // 6. PSD cross-check verdict.
   model.psd_check_pass = out.psd_check.pass;
-  model.psd_check_note =
-      std::to_string(out.psd_check.bins_outside) + " of " +
-      std::to_string(out.psd_check.bins_compared) + " PSD bins outside their 99 % interval (" +
-      number_text(out.psd_check.f_min_hz) + "–" + number_text(out.psd_check.f_max_hz) + " Hz)";
+  model.psd_check_note = psd_check_note(out.psd_check);
   progress("done", units);
   return out;
+}
+
+std::string_view psd_misfit_cause_text(analysis::PsdMisfitCause cause) {
+  using analysis::PsdMisfitCause;
+  switch (cause) {
+    case PsdMisfitCause::spectral_line:
+      return "likely a spectral line (vibration, a fan or motor, an electrical tone) the model "
+             "does not hold";
+    case PsdMisfitCause::isolated:
+      return "likely chance, or a small misfit its neighbours do not confirm";
+    case PsdMisfitCause::high_frequency_excess:
+      return "likely aliasing or unmodelled high-frequency noise (vibration or noise folded "
+             "from above Nyquist, quantization)";
+    case PsdMisfitCause::low_pass:
+      return "likely the sensor's low-pass filter (a roll-off towards Nyquist)";
+    case PsdMisfitCause::low_frequency_excess:
+      return "likely a missing random walk K or ramp R, or a warm-up drift at the start";
+    case PsdMisfitCause::low_frequency_deficit:
+      return "likely a fitted K, R or B the spectrum does not show (a drift fitted as a "
+             "random walk)";
+    case PsdMisfitCause::level:
+      return "likely a broadband level (N) the spectrum does not have, or a spectrum of "
+             "another shape than the model's terms";
+    case PsdMisfitCause::band_excess:
+      return "likely an unmodelled term in this band (a Gauss-Markov bump, broadband "
+             "vibration)";
+    case PsdMisfitCause::band_deficit:
+      return "likely a fitted term too large in this band";
+  }
+  return "likely an unmodelled term";
+}
+
+std::string psd_check_note(const analysis::PsdCrossCheck& check) {
+  std::string note = std::to_string(check.bins_outside) + " of " +
+                     std::to_string(check.bins_compared) +
+                     " PSD bins outside their 99 % interval (" + number_text(check.f_min_hz) + "–" +
+                     number_text(check.f_max_hz) + " Hz)";
+  if (check.pass || check.misfits.empty()) return note;
+  // The three largest bands (ties: the lower one), reported in frequency order.
+  std::vector<std::size_t> order(check.misfits.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return check.misfits[a].bins > check.misfits[b].bins;
+  });
+  order.resize(std::min<std::size_t>(order.size(), 3));
+  std::sort(order.begin(), order.end());
+  for (std::size_t i : order) {
+    const analysis::PsdMisfitBand& band = check.misfits[i];
+    const std::string where = band.f_low_hz == band.f_high_hz
+                                  ? number_text(band.f_low_hz)
+                                  : number_text(band.f_low_hz) + "–" + number_text(band.f_high_hz);
+    note += "; " + std::string(band.above ? "above" : "below") + " the model at " + where +
+            " Hz (" + std::to_string(band.bins) + (band.bins == 1 ? " bin" : " bins") +
+            ", up to ×" + significant_number_text(band.extreme_ratio, 3) +
+            "): " + std::string(psd_misfit_cause_text(band.cause));
+  }
+  if (check.misfits.size() > order.size()) {
+    note += "; " + std::to_string(check.misfits.size() - order.size()) + " smaller band(s)";
+  }
+  return note;
 }
 
 }  // namespace imunoise::pipeline

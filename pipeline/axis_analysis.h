@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/deviation.h"
@@ -89,6 +90,15 @@ AxisAnalysis analyze_axis(const std::string& name, SensorKind kind, std::span<co
 AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
                                  std::span<const std::span<const double>> pieces, double tau0_s,
                                  int axis_index, const AxisAnalysisOptions& options);
+
+/// The likely cause of a PSD misfit band as the finding says it ("likely …"), for the note
+/// below and for report/finding_remedies, which recognises it.
+std::string_view psd_misfit_cause_text(analysis::PsdMisfitCause cause);
+
+/// The PSD cross-check note of model.yaml: "B of C PSD bins outside their 99 % interval
+/// (F1–F2 Hz)", and when the check failed its largest bands (at most three, by bins; in
+/// frequency order), each "above|below the model at F1–F2 Hz (n bins, up to ×r): likely …".
+std::string psd_check_note(const analysis::PsdCrossCheck& check);
 
 /// Noise type α (S_y ∝ f^α) of the term of C that dominates the AVAR (HADAMARD: HVAR) at τ.
 int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard);

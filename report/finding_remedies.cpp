@@ -10,6 +10,7 @@
 #include "analysis/noise_terms.h"
 #include "common/number_text.h"
 #include "models/datasheet_units.h"
+#include "pipeline/axis_analysis.h"
 
 namespace imunoise::report {
 
@@ -78,7 +79,42 @@ std::string gm_bootstrap_remedy(const FindingContext&) {
   return "analyze again with --bootstrap 200 for intervals on σ and T_c of the Gauss-Markov "
          "terms";
 }
-std::string psd_remedy(const FindingContext&) {
+/// The remedy of a failed PSD cross-check: one per likely cause the note names
+/// (pipeline::psd_misfit_cause_text), the generic advice when it names none.
+std::string psd_remedy(const FindingContext& c) {
+  using analysis::PsdMisfitCause;
+  constexpr std::array<std::pair<PsdMisfitCause, std::string_view>, 9> kRemedies{{
+      {PsdMisfitCause::spectral_line,
+       "a line inside the band named → analyze --sinusoid-hz F with its frequency F"},
+      {PsdMisfitCause::isolated,
+       "nothing for a single bin; if it recurs at the same frequency in other recordings, "
+       "treat it as a line (analyze --sinusoid-hz F)"},
+      {PsdMisfitCause::high_frequency_excess,
+       "for vibration, record on an isolated mount; for noise folded from above Nyquist, "
+       "record with the sensor's anti-alias filter on or at a higher rate"},
+      {PsdMisfitCause::low_pass,
+       "keep the low-pass check on (the default) or raise --tau-min above the filter's time "
+       "constant; N stays right, the check band just reaches the roll-off"},
+      {PsdMisfitCause::low_frequency_excess,
+       "analyze --trim-start with the warm-up's length if the record starts warm-up, "
+       "otherwise record longer so that K or R is identified"},
+      {PsdMisfitCause::low_frequency_deficit,
+       "look for a drift in the record (a ramp or warm-up fitted as a random walk): "
+       "--trim-start cuts a warm-up"},
+      {PsdMisfitCause::level,
+       "compare the PSD figure with the model: the fit's N may be pulled by a Gauss-Markov "
+       "term (analyze --gauss-markov) or by a low-pass (--tau-min)"},
+      {PsdMisfitCause::band_excess, "analyze --gauss-markov for a correlated term in that band"},
+      {PsdMisfitCause::band_deficit,
+       "compare the PSD figure with the model in that band; analyze --gauss-markov if a "
+       "Gauss-Markov term would fit both"},
+  }};
+  std::string out;
+  for (const auto& [cause, remedy] : kRemedies) {
+    if (c.text.find(pipeline::psd_misfit_cause_text(cause)) == std::string_view::npos) continue;
+    out += (out.empty() ? "" : "; ") + text(remedy);
+  }
+  if (!out.empty()) return out;
   return "look at the PSD figure of this axis: a line at F Hz → analyze --sinusoid-hz F; a "
          "roll-off towards Nyquist → keep the low-pass check on (the default) or raise "
          "--tau-min above the filter's time constant; excess at the lowest frequencies → cut "

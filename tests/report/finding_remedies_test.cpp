@@ -272,5 +272,47 @@ TEST(FindingRemedies, DurationToShowRandomWalkMatchesTheClosedForm) {
             std::string::npos);
 }
 
+TEST(FindingRemedies, AFailedPsdCheckNamesItsBandsAndGetsTheRemedyOfEachLikelyCause) {
+  // A failed check with a low-pass band at the top and a missing walk at the bottom, as
+  // analysis::cross_check_psd() reports them: the note names both bands in Hz with their
+  // causes, the kind is still psd_check_failed, and the remedy is the one of each cause.
+  analysis::PsdCrossCheck check;
+  check.bins_compared = 40;
+  check.bins_outside = 9;
+  check.f_min_hz = 0.0046;
+  check.f_max_hz = 35.6;
+  check.pass = false;
+  check.misfits.push_back(
+      {0.0046, 0.0072, 3, true, 2.4, analysis::PsdMisfitCause::low_frequency_excess});
+  check.misfits.push_back({14.2, 35.6, 6, false, 0.064, analysis::PsdMisfitCause::low_pass});
+  const std::string note = pipeline::psd_check_note(check);
+  EXPECT_NE(note.find("9 of 40 PSD bins outside their 99 % interval (0.0046–35.6 Hz)"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("above the model at 0.0046–0.0072 Hz (3 bins, up to ×2.4): " +
+                      std::string(pipeline::psd_misfit_cause_text(
+                          analysis::PsdMisfitCause::low_frequency_excess))),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("below the model at 14.2–35.6 Hz (6 bins, up to ×0.064): likely the "
+                      "sensor's low-pass filter"),
+            std::string::npos)
+      << note;
+  models::AxisModel axis;
+  const ExplainedFinding f = explain_finding("gyro_x", {note, nullptr, &axis, "model.yaml"});
+  EXPECT_EQ(f.kind, "psd_check_failed");
+  EXPECT_NE(f.remedy.find("--trim-start"), std::string::npos) << f.remedy;
+  EXPECT_NE(f.remedy.find("--tau-min"), std::string::npos) << f.remedy;
+  EXPECT_EQ(f.remedy.find("--sinusoid-hz"), std::string::npos) << f.remedy;
+  // A passing check's note names no band; every cause has its own text.
+  check.pass = true;
+  EXPECT_EQ(pipeline::psd_check_note(check).find("model at"), std::string::npos);
+  std::set<std::string> texts;
+  for (int c = 0; c <= static_cast<int>(analysis::PsdMisfitCause::band_deficit); ++c)
+    texts.insert(
+        std::string(pipeline::psd_misfit_cause_text(static_cast<analysis::PsdMisfitCause>(c))));
+  EXPECT_EQ(texts.size(), static_cast<std::size_t>(analysis::PsdMisfitCause::band_deficit) + 1);
+}
+
 }  // namespace
 }  // namespace imunoise::report
