@@ -562,7 +562,8 @@ std::string_view psd_misfit_cause_text(analysis::PsdMisfitCause cause) {
     case PsdMisfitCause::low_pass:
       return "likely the sensor's low-pass filter (a roll-off towards Nyquist)";
     case PsdMisfitCause::low_frequency_excess:
-      return "likely a missing random walk K or ramp R, or a warm-up drift at the start";
+      return "likely a missing random walk K or ramp R, or a slow drift the start-of-record scan "
+             "did not flag";
     case PsdMisfitCause::low_frequency_deficit:
       return "likely a fitted K, R or B the spectrum does not show (a drift fitted as a "
              "random walk)";
