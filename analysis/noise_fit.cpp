@@ -16,6 +16,7 @@
 #include "analysis/chi_square.h"
 #include "analysis/confidence.h"
 #include "analysis/edf.h"
+#include "analysis/golden_section.h"
 #include "analysis/nnls.h"
 #include "common/errors.h"
 
@@ -143,41 +144,6 @@ Solution solve(const Data& data, const std::vector<Column>& columns, bool hadama
 
 Eigen::VectorXd zero_offset(const Data& data) {
   return Eigen::VectorXd::Zero(static_cast<Eigen::Index>(data.size()));
-}
-
-/// Minimizes F on [lo, hi] by golden-section search; returns the best abscissa evaluated.
-template <class F>
-double golden_section_minimum(F&& f, double lo, double hi, double tolerance) {
-  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
-  double a = lo, b = hi;
-  double x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  for (int i = 0; i < 200 && b - a > tolerance; ++i) {
-    if (f1 <= f2) {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - ratio * (b - a);
-      f1 = f(x1);
-    } else {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + ratio * (b - a);
-      f2 = f(x2);
-    }
-  }
-  // Also compare the bracket ends: the minimum may sit on the boundary.
-  double best = f1 <= f2 ? x1 : x2;
-  double best_value = std::min(f1, f2);
-  for (double edge : {lo, hi}) {
-    const double value = f(edge);
-    if (value < best_value) {
-      best_value = value;
-      best = edge;
-    }
-  }
-  return best;
 }
 
 /// Refines the correlation time of every GM column by a 1-D search in ln T_c within its

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "analysis/chi_square.h"
+#include "analysis/golden_section.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
@@ -159,27 +160,10 @@ double refine_frequency(std::span<const std::span<const double>> pieces, double 
       best = i * step;
     }
   }
-  // Golden section on [best − step, best + step] (unimodal there: the grid resolves the lobe).
-  constexpr double kGolden = 0.6180339887498949;
-  double a = best - step, b = best + step;
-  double c = b - kGolden * (b - a), d = a + kGolden * (b - a);
-  double pc = power(c), pd = power(d);
-  for (int i = 0; i < 40; ++i) {
-    if (pc > pd) {
-      b = d;
-      d = c;
-      pd = pc;
-      c = b - kGolden * (b - a);
-      pc = power(c);
-    } else {
-      a = c;
-      c = d;
-      pc = pd;
-      d = a + kGolden * (b - a);
-      pd = power(d);
-    }
-  }
-  const double refined = 0.5 * (a + b);
+  // Golden section on [best − step, best + step] (unimodal there: the grid resolves the lobe),
+  // to 1e-8 of the grid step.
+  const double refined = golden_section_minimum([&](double offset) { return -power(offset); },
+                                                best - step, best + step, 1e-8 * step);
   return f0 + std::clamp(refined, -half_width, half_width);
 }
 
