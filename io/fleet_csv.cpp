@@ -10,6 +10,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/atomic_output.h"
+#include "io/csv_fields.h"
 
 namespace imunoise::io {
 
@@ -19,48 +20,6 @@ constexpr const char* kHeader =
     "unit,axis,term,si_unit,identified,value_si,ci_low_si,ci_high_si,robust_z_log10,outlier,"
     "spec_max_si,spec_verdict";
 constexpr std::size_t kColumns = 12;
-
-/// FIELD as a CSV field: quoted (with doubled quotes) when it holds a comma, a quote or a line
-/// break.
-std::string csv_field(const std::string& field) {
-  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
-  std::string out = "\"";
-  for (char c : field) {
-    if (c == '"') out.push_back('"');
-    out.push_back(c);
-  }
-  out.push_back('"');
-  return out;
-}
-
-/// The fields of LINE (RFC 4180 quoting); false when a quote is not closed.
-bool split_fields(const std::string& line, std::vector<std::string>& fields) {
-  fields.clear();
-  std::string field;
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        field.push_back('"');
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        field.push_back(c);
-      }
-    } else if (c == '"' && field.empty()) {
-      quoted = true;
-    } else if (c == ',') {
-      fields.push_back(field);
-      field.clear();
-    } else {
-      field.push_back(c);
-    }
-  }
-  fields.push_back(field);
-  return !quoted;
-}
 
 std::string number(double v) { return std::isfinite(v) ? shortest_number_text(v) : ""; }
 
@@ -128,7 +87,7 @@ FleetTable parse_fleet_csv(const std::string& text, const std::string& file) {
     ++number_of_line;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
-    if (!split_fields(line, f)) fail(file, number_of_line, "a quoted field is not closed");
+    if (!split_csv_fields(line, f)) fail(file, number_of_line, "a quoted field is not closed");
     if (f.size() != kColumns)
       fail(file, number_of_line,
            std::to_string(f.size()) + " fields, the header has " + std::to_string(kColumns));

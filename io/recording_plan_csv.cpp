@@ -13,6 +13,7 @@
 #include "common/errors.h"
 #include "common/number_text.h"
 #include "io/atomic_output.h"
+#include "io/csv_fields.h"
 
 namespace imunoise::io {
 
@@ -29,18 +30,6 @@ std::string number(double value) {
 }
 
 std::string percent(double fraction) { return number(fraction * 100.0); }
-
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(line.substr(start, comma == std::string::npos ? comma : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return fields;
-}
 
 /// Reads the cells of one data row with messages "SOURCE:LINE: column 'NAME': problem".
 class Row {
@@ -91,7 +80,7 @@ std::string format_plan_csv(const pipeline::RecordingPlan& plan) {
     for (std::size_t d = 0; d < plan.durations_s.size() && d < axis.table.size(); ++d) {
       for (NoiseTerm t : kNoiseTerms) {
         const pipeline::TermPrecision& p = axis.table[d][t];
-        out << "expected," << axis.name << "," << term_symbol(t) << "," << rate << ","
+        out << "expected," << csv_field(axis.name) << "," << term_symbol(t) << "," << rate << ","
             << number(plan.durations_s[d]) << "," << (p.present ? 1 : 0) << ","
             << (p.identified ? 1 : 0) << "," << percent(p.relative_halfwidth) << ",\n";
       }
@@ -100,15 +89,15 @@ std::string format_plan_csv(const pipeline::RecordingPlan& plan) {
   for (const pipeline::AxisPlan& axis : plan.axes) {
     for (NoiseTerm t : kNoiseTerms) {
       if (!std::isnan(axis.identify_duration_s[t])) {
-        out << "identify," << axis.name << "," << term_symbol(t) << "," << rate << ","
+        out << "identify," << csv_field(axis.name) << "," << term_symbol(t) << "," << rate << ","
             << number(axis.identify_duration_s[t]) << ",1,,,\n";
       }
     }
     for (const pipeline::PlanTarget& target : plan.targets) {
       const double d = axis.target_duration_s[target.term];
       if (!std::isnan(d)) {
-        out << "target," << axis.name << "," << term_symbol(target.term) << "," << rate << ","
-            << number(d) << ",1,,," << percent(target.relative_halfwidth) << "\n";
+        out << "target," << csv_field(axis.name) << "," << term_symbol(target.term) << "," << rate
+            << "," << number(d) << ",1,,," << percent(target.relative_halfwidth) << "\n";
       }
     }
   }
@@ -162,8 +151,10 @@ pipeline::RecordingPlan parse_plan_csv(const std::string& text, const std::strin
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
-    std::vector<std::string> fields = split_fields(line);
+    std::vector<std::string> fields;
+    const bool closed = split_csv_fields(line, fields);
     Row row(fields, source, line_number);
+    if (!closed) row.fail("a quoted field is not closed");
     if (fields.size() != kColumns) {
       row.fail(std::to_string(fields.size()) + " fields, the header has " +
                std::to_string(kColumns));

@@ -94,6 +94,18 @@ TEST(RecordingPlanCsv, RoundTripsThroughAFile) {
   expect_same(plan, read_plan_csv(path.string()));
 }
 
+// Axis names are free text (a mapped column): a comma or a quote in one is quoted on write
+// and read back as written.
+TEST(RecordingPlanCsv, AxisNamesWithCommasAndQuotesRoundTrip) {
+  pipeline::RecordingPlan plan = sample_plan();
+  plan.axes[0].name = "gyro, \"left\"";
+  const std::string text = format_plan_csv(plan);
+  EXPECT_NE(text.find("expected,\"gyro, \"\"left\"\"\",N,"), std::string::npos);
+  expect_same(plan, parse_plan_csv(text, "plan.csv"));
+  EXPECT_THROW(parse_plan_csv(text.substr(0, text.find("\"\"left")) + "\n", "plan.csv"),
+               InputError);
+}
+
 TEST(RecordingPlanCsv, ColumnsNameTheirUnitsAndRowsAreFlat) {
   const auto path = test::make_temp_dir("plan_csv_columns") / "plan.csv";
   write_plan_csv(sample_plan(), path.string());
