@@ -118,7 +118,7 @@ std::string outlier_finding(const std::string& name, std::string_view unit, std:
       significant_number_text(share, 2) + " % of the samples) beyond " +
       significant_number_text(kOutlierThreshold, 2) + " robust scales (" +
       significant_number_text(scan.residual_scale, 3) + " " + std::string(unit) +
-      ", MAD of the residual to the neighbours' median), the largest " +
+      ", MAD of the residual to the mean of the 8 nearest good neighbours), the largest " +
       significant_number_text(scan.largest, 3) + " scales; they carry " +
       significant_number_text(100.0 * scan.excess_variance_fraction, 2) +
       " % of the residual variance: N " + (n_effect >= 0.0 ? "+" : "") +

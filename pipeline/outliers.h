@@ -25,8 +25,9 @@ enum class OutlierPolicy {
 /// 'TEXT'" otherwise.
 OutlierPolicy parse_outlier_policy(std::string_view text, std::string_view setting);
 
-/// Outliers sit beyond this many robust scales of the residual r_k = x_k − median of
-/// x_{k−2}, x_{k−1}, x_{k+1}, x_{k+2}.
+/// Outliers sit beyond this many robust scales of the residual r_k = x_k − the local level:
+/// a first pass against the median of x_{k−2}, x_{k−1}, x_{k+1}, x_{k+2}, a second against
+/// the mean of the 8 nearest samples the first pass left (4 per side within ±8).
 inline constexpr double kOutlierThreshold = 4.0;
 /// Half window of the local level that replaces a dropped outlier [samples].
 inline constexpr std::size_t kOutlierLevelHalfWindow = 512;
@@ -34,7 +35,7 @@ inline constexpr std::size_t kOutlierLevelHalfWindow = 512;
 /// The outliers of one channel.
 struct OutlierScan {
   std::vector<std::size_t> indices;  ///< samples beyond the threshold, increasing
-  double residual_scale = 0.0;       ///< 1.4826·MAD of r [channel unit]
+  double residual_scale = 0.0;       ///< 1.4826·MAD of the second pass's r [channel unit]
   double sample_sigma = 0.0;  ///< robust per-sample σ: 1.4826·MAD of the first differences / √2
   double largest = 0.0;       ///< largest |r| of an outlier, in residual scales
   /// Share of Σ r² carried by the flagged samples beyond what Gaussian noise puts past the
