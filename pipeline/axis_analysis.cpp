@@ -18,6 +18,7 @@
 #include "common/number_text.h"
 #include "models/bias_instability_gm.h"
 #include "pipeline/bootstrap.h"
+#include "pipeline/low_pass_corner.h"
 
 namespace imunoise::pipeline {
 
@@ -190,6 +191,23 @@ int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard) {
   return alpha;
 }
 
+analysis::FitResult fit_with_model_noise_types(analysis::DeviationCurve& curve,
+                                               const analysis::FitOptions& options,
+                                               std::vector<analysis::FitPoint>& points) {
+  analysis::FitOptions first_options = options;
+  if (options.gauss_markov == analysis::GaussMarkovMode::automatic)
+    first_options.gauss_markov = analysis::GaussMarkovMode::off;
+  const analysis::FitResult first =
+      analysis::fit_noise_model(analysis::fit_points(curve), first_options);
+  // The lag-1 noise identification becomes unreliable with few decimated points at large m
+  // (e.g. white FM read as white PM, ν wrong by 10²–10³). Once a model exists, the noise type
+  // at each τ is that of the model's dominant term, and the EDF, intervals and fit weights
+  // follow it; the fit is then repeated once.
+  apply_model_noise_type(curve, first.coefficients);
+  points = analysis::fit_points(curve);
+  return analysis::fit_noise_model(points, options);
+}
+
 void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoefficients& c) {
   const bool hadamard =
       curve.type == analysis::DeviationType::ohdev || curve.type == analysis::DeviationType::hdev;
@@ -346,20 +364,13 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // 2. The fit on OAVAR (σ² domain, theory.md §4.3).
   // fit_points caps each EDF at the largest value of the white/flicker/RW noise types for that
   // m, so a mis-identified noise type at large m cannot over-weight a point.
-  std::vector<analysis::FitPoint> points = analysis::fit_points(out.oadev);
+  std::vector<analysis::FitPoint> points;
   analysis::FitOptions fit_options = options.fit;
   fit_options.sinusoid_frequencies_hz.clear();  // fitted on the samples above
   if (fit_options.tau_min_s <= 0.0 && options.auto_low_pass) {
     fit_options.tau_min_s = low_pass_tau_min(out.oadev);
   }
-  analysis::FitResult first_fit = analysis::fit_noise_model(points, fit_options);
-  // The lag-1 noise identification becomes unreliable with few decimated points at large m
-  // (e.g. white FM read as white PM, ν wrong by 10²–10³). Once a model exists, the noise type
-  // at each τ is that of the model's dominant term, and the EDF, intervals and fit weights
-  // follow it (theory.md §4.3: model-based weights); the fit is then repeated once.
-  apply_model_noise_type(out.oadev, first_fit.coefficients);
-  points = analysis::fit_points(out.oadev);
-  out.fit = analysis::fit_noise_model(points, fit_options);
+  out.fit = fit_with_model_noise_types(out.oadev, fit_options, points);
   apply_model_noise_type(out.oadev, out.fit.coefficients);
   apply_model_noise_type(out.ohdev, out.fit.coefficients);
 
@@ -385,7 +396,15 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   NoiseCoefficients with_lines = out.fit.coefficients;
   for (const analysis::FittedLine& line : lines.fit.lines)
     with_lines.sinusoids.push_back(line.value);
-  out.psd_check = analysis::cross_check_psd(out.psd, with_lines, tau0_s, 0.4 / tau0_s);
+  double check_max_hz = 0.4 / tau0_s;
+  if (options.auto_low_pass) {
+    const LowPassCorner corner = find_low_pass_corner(out.psd, out.fit.coefficients, tau0_s);
+    if (corner.found && kPsdCheckLowPassFraction * corner.corner_hz < check_max_hz) {
+      out.psd_check_low_pass_hz = corner.corner_hz;
+      check_max_hz = kPsdCheckLowPassFraction * corner.corner_hz;
+    }
+  }
+  out.psd_check = analysis::cross_check_psd(out.psd, with_lines, tau0_s, check_max_hz);
   progress(replicates > 0 ? "bootstrap" : "intervals", 4);
 
   // 4. Intervals.
@@ -543,7 +562,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
 
   // 6. PSD cross-check verdict.
   model.psd_check_pass = out.psd_check.pass;
-  model.psd_check_note = psd_check_note(out.psd_check);
+  model.psd_check_note = psd_check_note(out.psd_check, out.psd_check_low_pass_hz);
   progress("done", units);
   return out;
 }
@@ -579,11 +598,17 @@ std::string_view psd_misfit_cause_text(analysis::PsdMisfitCause cause) {
   return "likely an unmodelled term";
 }
 
-std::string psd_check_note(const analysis::PsdCrossCheck& check) {
+std::string psd_check_note(const analysis::PsdCrossCheck& check, double low_pass_corner_hz) {
   std::string note = std::to_string(check.bins_outside) + " of " +
                      std::to_string(check.bins_compared) +
                      " PSD bins outside their 99 % interval (" + number_text(check.f_min_hz) + "–" +
-                     number_text(check.f_max_hz) + " Hz)";
+                     number_text(check.f_max_hz) + " Hz";
+  if (low_pass_corner_hz > 0.0) {
+    note += ", up to 1/4 of the low-pass corner ";
+    note += significant_number_text(low_pass_corner_hz, 3);
+    note += " Hz";
+  }
+  note += ")";
   if (check.pass || check.misfits.empty()) return note;
   // The three largest bands (ties: the lower one), reported in frequency order.
   std::vector<std::size_t> order(check.misfits.size());

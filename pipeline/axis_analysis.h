@@ -70,6 +70,9 @@ struct AxisAnalysis {
   analysis::SlopeReadoff slope;
   analysis::PsdReadoff psd_readoff;
   analysis::PsdCrossCheck psd_check;
+  /// The −3 dB low-pass corner that bounded psd_check's band (pipeline/low_pass_corner.h;
+  /// 0 = none found or the check off) [Hz].
+  double psd_check_low_pass_hz = 0.0;
   analysis::LineDetection lines;  ///< the line search (empty when not run)
   models::AxisModel model;
 };
@@ -96,9 +99,17 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
 std::string_view psd_misfit_cause_text(analysis::PsdMisfitCause cause);
 
 /// The PSD cross-check note of model.yaml: "B of C PSD bins outside their 99 % interval
-/// (F1–F2 Hz)", and when the check failed its largest bands (at most three, by bins; in
+/// (F1–F2 Hz)" (", up to 1/4 of the low-pass corner X Hz" inside the brackets when
+/// LOW_PASS_CORNER_HZ > 0 bounded the band), and when the check failed its largest bands (at most three, by bins; in
 /// frequency order), each "above|below the model at F1–F2 Hz (n bins, up to ×r): likely …".
-std::string psd_check_note(const analysis::PsdCrossCheck& check);
+std::string psd_check_note(const analysis::PsdCrossCheck& check, double low_pass_corner_hz = 0.0);
+
+/// The PSD cross-check compares bins up to this fraction of a detected low-pass corner: a
+/// 2nd-order roll-off (|H|² = 1/(1 + (f/f_c)⁴), the gentlest MEMS DLPF) is 0.4 % down there,
+/// below the scatter of the highest bins, and at 0.44·f_c already 3.6 % (the battery's
+/// lowpass class failed on every channel there). The model has no filter term; the fit
+/// starts above the filter's τ (low_pass_tau_min) for the same reason.
+inline constexpr double kPsdCheckLowPassFraction = 0.25;
 
 /// Noise type α (S_y ∝ f^α) of the term of C that dominates the AVAR (HADAMARD: HVAR) at τ.
 int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard);
@@ -106,6 +117,16 @@ int model_noise_alpha(const NoiseCoefficients& c, double tau_s, bool hadamard);
 /// Re-derives α, EDF and the interval of every point of CURVE from the model C instead of the
 /// lag-1 identification (which is unreliable with few points at large m).
 void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoefficients& c);
+
+/// The fit of CURVE's OAVAR as analyze runs it (theory.md §4.3, model-based weights): a first
+/// fit with CURVE's noise types, then CURVE's α, EDF and intervals re-derived from that model
+/// (apply_model_noise_type) and the fit repeated on them; POINTS is set to the points of that
+/// second fit. With GaussMarkovMode::automatic the first fit is the power-law one: it only
+/// sets the noise types, and the GM candidate (the costly half of an automatic fit) is fitted
+/// once, on the final EDFs.
+analysis::FitResult fit_with_model_noise_types(analysis::DeviationCurve& curve,
+                                               const analysis::FitOptions& options,
+                                               std::vector<analysis::FitPoint>& points);
 
 /// The profile upper bound of every term FIT did not identify (0 for identified terms), as the
 /// analysis reports it and widens the identified terms' intervals with

@@ -151,11 +151,8 @@ PerTerm<TermPrecision> expected_precision(const NoiseCoefficients& model, double
     apply_model_noise_type(curve, model);
     analysis::FitOptions fit_options = options.fit;
     if (fit_options.tau_min_s <= 0.0) fit_options.tau_min_s = low_pass_tau_min(curve);
-    std::vector<analysis::FitPoint> points = analysis::fit_points(curve);
-    const analysis::FitResult first = analysis::fit_noise_model(points, fit_options);
-    apply_model_noise_type(curve, first.coefficients);
-    points = analysis::fit_points(curve);
-    const analysis::FitResult fit = analysis::fit_noise_model(points, fit_options);
+    std::vector<analysis::FitPoint> points;
+    const analysis::FitResult fit = fit_with_model_noise_types(curve, fit_options, points);
     // 3. The default intervals: draws of the OAVAR vector under the fitted model, refitted.
     // SETS sets of the analysis's draw count, in one call (one covariance): replicate r
     // depends only on (seed, r), so the first set is exactly the analysis's draws and the

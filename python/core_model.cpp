@@ -29,7 +29,7 @@ namespace {
 /// Python argument names in messages.
 pipeline::RecordingAnalysisOptions fit_options(
     double tau0_s, const std::string& taus, double confidence, int interval_draws,
-    std::optional<int> bootstrap, std::uint64_t seed, bool gauss_markov,
+    std::optional<int> bootstrap, std::uint64_t seed, std::optional<bool> gauss_markov,
     const std::vector<double>& sinusoid_hz, double tau_min_s, double tau_max_s, bool low_pass_check,
     const std::string& gaps, unsigned threads) {
   if (!(confidence > 0.0 && confidence < 1.0)) {
@@ -57,8 +57,10 @@ pipeline::RecordingAnalysisOptions fit_options(
   axis.bootstrap_replicates = bootstrap ? *bootstrap : interval_draws;
   axis.bootstrap_setting = "bootstrap=N or interval_draws=N";
   axis.seed = seed;
-  axis.fit.gauss_markov =
-      gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
+  // None: automatic, as analyze without --gauss-markov / --no-gauss-markov.
+  axis.fit.gauss_markov = !gauss_markov   ? analysis::GaussMarkovMode::automatic
+                          : *gauss_markov ? analysis::GaussMarkovMode::on
+                                          : analysis::GaussMarkovMode::off;
   axis.fit.tau_min_s = tau_min_s;
   axis.fit.tau_max_s = tau_max_s;
   axis.fit.sinusoid_frequencies_hz = sinusoid_hz;
@@ -90,8 +92,9 @@ py::dict curve_dict(const analysis::DeviationCurve& c) {
 
 py::dict fit(const pipeline::Recording& recording, const std::string& taus, double confidence,
              int interval_draws, std::optional<int> bootstrap, std::uint64_t seed,
-             bool gauss_markov, const std::vector<double>& sinusoid_hz, double tau_min_s,
-             double tau_max_s, bool low_pass_check, const std::string& gaps, unsigned threads) {
+             std::optional<bool> gauss_markov, const std::vector<double>& sinusoid_hz,
+             double tau_min_s, double tau_max_s, bool low_pass_check, const std::string& gaps,
+             unsigned threads) {
   const pipeline::RecordingAnalysisOptions options =
       fit_options(recording.sample_period_s, taus, confidence, interval_draws, bootstrap, seed,
                   gauss_markov, sinusoid_hz, tau_min_s, tau_max_s, low_pass_check, gaps, threads);
@@ -157,10 +160,10 @@ std::string export_text(const std::string& model_yaml, const std::string& source
 void add_model_functions(py::module_& m) {
   m.def("fit", &fit, py::arg("recording"), py::kw_only(), py::arg("taus") = "log:10",
         py::arg("confidence") = 0.95, py::arg("interval_draws") = 200,
-        py::arg("bootstrap") = py::none(), py::arg("seed") = 1, py::arg("gauss_markov") = false,
-        py::arg("sinusoid_hz") = std::vector<double>{}, py::arg("tau_min_s") = 0.0,
-        py::arg("tau_max_s") = 0.0, py::arg("low_pass_check") = true, py::arg("gaps") = "refuse",
-        py::arg("threads") = 0u);
+        py::arg("bootstrap") = py::none(), py::arg("seed") = 1,
+        py::arg("gauss_markov") = py::none(), py::arg("sinusoid_hz") = std::vector<double>{},
+        py::arg("tau_min_s") = 0.0, py::arg("tau_max_s") = 0.0, py::arg("low_pass_check") = true,
+        py::arg("gaps") = "refuse", py::arg("threads") = 0u);
   m.def("export_config", &export_text, py::arg("model_yaml"), py::arg("source"), py::arg("format"),
         py::kw_only(), py::arg("rate_hz") = 0.0, py::arg("axis") = "worst",
         py::arg("conservative") = false, py::arg("gm_convention") = "peak_match",

@@ -22,7 +22,7 @@ std::string term_remedy(const FindingContext& c) {
   const std::optional<NoiseTerm> term = leading_term(c.text);
   if (!term || !c.axis) {
     return "a Gauss-Markov or sinusoid column the data do not support is simply left out; "
-           "nothing to do (analyze --gauss-markov / --sinusoid-hz F propose them)";
+           "nothing to do (analyze --gauss-markov / --sinusoid-hz F force them in)";
   }
   return unidentified_term_remedy(*c.axis, *term, c.model ? c.model->duration_s : 0.0,
                                   c.model ? c.model->sample_rate_hz : 0.0);
@@ -103,8 +103,10 @@ std::string psd_remedy(const FindingContext& c) {
        "--trim-start cuts a warm-up"},
       {PsdMisfitCause::level,
        "compare the PSD figure with the model: the fit's N may be pulled by a Gauss-Markov "
-       "term (analyze --gauss-markov) or by a low-pass (--tau-min)"},
-      {PsdMisfitCause::band_excess, "analyze --gauss-markov for a correlated term in that band"},
+       "term the selection left out (analyze --gauss-markov forces GM terms in) or by a "
+       "low-pass (--tau-min)"},
+      {PsdMisfitCause::band_excess,
+       "analyze --gauss-markov to fit a correlated term in that band inside the selection"},
       {PsdMisfitCause::band_deficit,
        "compare the PSD figure with the model in that band; analyze --gauss-markov if a "
        "Gauss-Markov term would fit both"},
@@ -120,6 +122,10 @@ std::string psd_remedy(const FindingContext& c) {
          "--tau-min above the filter's time constant; excess at the lowest frequencies → cut "
          "the warm-up from the recording and analyze again";
 }
+std::string gm_choice_remedy(const FindingContext&) {
+  return "nothing to do; analyze --gauss-markov fits the GM terms inside the one model "
+         "selection, --no-gauss-markov leaves them out";
+}
 std::string drift_motion_remedy(const FindingContext&) {
   return "record again on a still mount; imunoise drift --force runs anyway";
 }
@@ -133,7 +139,7 @@ std::string drift_nees_remedy(const FindingContext& c) {
 // pipeline/data_quality.cpp (quality_findings), pipeline/gap_policy.cpp (plan_gaps notes),
 // analysis/noise_fit.cpp (selection notes), pipeline/axis_analysis.cpp (fit and PSD notes),
 // report/report_page.cpp (drift). Order matters where one marker contains another's text.
-constexpr std::array<FindingKind, 19> kFindingKinds{{
+constexpr std::array<FindingKind, 21> kFindingKinds{{
     {"gaps_split", FindingSource::data_quality, "the curves and the PSD are pooled over ",
      "the record has time-stamp gaps; --gaps split analysed the gap-free pieces and pooled "
      "their curves",
@@ -191,6 +197,14 @@ constexpr std::array<FindingKind, 19> kFindingKinds{{
      "σ and T_c of a Gauss-Markov term enter the model nonlinearly; the least-squares "
      "intervals do not cover them",
      gm_bootstrap_remedy},
+    {"gm_model_compared", FindingSource::fit_note, "Gauss-Markov model ",
+     "the model with Gauss-Markov terms and the power-law model were fitted apart and the one "
+     "with the lower penalized deviance D + p·κ·n_used/n_eff was kept (theory.md §4.3)",
+     gm_choice_remedy},
+    {"gm_none", FindingSource::fit_note, "no Gauss-Markov term identified",
+     "the fit with Gauss-Markov terms kept none: the curve shows no correlated bump that the "
+     "power-law terms do not already fit",
+     gm_choice_remedy},
     {"psd_check_failed", FindingSource::psd_check, "PSD bins outside their 99 % interval",
      "the measured PSD leaves the fitted model's 99 % band in more bins than chance allows "
      "(theory.md §5.4): most often a spectral line (vibration, a fan or motor, a switching "

@@ -48,8 +48,9 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
   options.bootstrap_replicates = s.bootstrap ? *s.bootstrap : s.interval_draws;
   options.bootstrap_setting = "--bootstrap N or --interval-draws N";
   options.seed = s.seed;
-  options.fit.gauss_markov =
-      s.gauss_markov ? analysis::GaussMarkovMode::on : analysis::GaussMarkovMode::off;
+  options.fit.gauss_markov = s.gauss_markov      ? analysis::GaussMarkovMode::on
+                             : s.no_gauss_markov ? analysis::GaussMarkovMode::off
+                                                 : analysis::GaussMarkovMode::automatic;
   options.fit.tau_min_s = s.tau_min_s;
   for (double f : s.sinusoid_hz) {
     if (!(f > 0.0) || !(f < 0.5 / tau0_s)) {
@@ -85,8 +86,15 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
   cmd.add_option("--seed", s.seed, "seed of the interval draws or the bootstrap (default 1)")
       ->group(group);
   cmd.add_option("--threads", s.threads, "worker threads (0 = all cores)")->group(group);
-  cmd.add_flag("--gauss-markov", s.gauss_markov,
-               "also fit first-order Gauss-Markov terms (grid of correlation times, refined)")
+  CLI::Option* gm = cmd.add_flag("--gauss-markov", s.gauss_markov,
+                                 "fit first-order Gauss-Markov terms together with the power-law "
+                                 "terms in one model selection (default: the model with GM "
+                                 "terms is fitted apart and kept only when its penalized "
+                                 "deviance is lower than the power-law model's)")
+                        ->group(group);
+  cmd.add_flag("--no-gauss-markov", s.no_gauss_markov,
+               "no Gauss-Markov terms: power-law terms and sinusoids only")
+      ->excludes(gm)
       ->group(group);
   cmd.add_option("--sinusoid-hz", s.sinusoid_hz,
                  "sinusoid frequencies F1,F2,... [Hz] fitted (on the samples, frequency refined "

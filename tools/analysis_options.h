@@ -31,7 +31,8 @@ struct AnalysisSettings {
       200;  ///< `--interval-draws N`: OAVAR vectors drawn per axis (0: least squares)
   std::uint64_t seed = 1;
   unsigned threads = 0;
-  bool gauss_markov = false;
+  bool gauss_markov = false;     ///< `--gauss-markov`: GM terms always tried in the selection
+  bool no_gauss_markov = false;  ///< `--no-gauss-markov`: power-law terms and sinusoids only
   bool no_low_pass_check = false;
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;

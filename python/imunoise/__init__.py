@@ -188,14 +188,17 @@ class FitResult:
 
 def fit(recording: Recording, *, taus: str = "log:10", confidence: float = 0.95,
         interval_draws: int = 200, bootstrap: Optional[int] = None, seed: int = 1,
-        gauss_markov: bool = False, sinusoid_hz: Sequence[float] = (), tau_min_s: float = 0.0,
-        tau_max_s: float = 0.0, low_pass_check: bool = True, gaps: str = "refuse",
-        threads: int = 0) -> FitResult:
+        gauss_markov: Optional[bool] = None, sinusoid_hz: Sequence[float] = (),
+        tau_min_s: float = 0.0, tau_max_s: float = 0.0, low_pass_check: bool = True,
+        gaps: str = "refuse", threads: int = 0) -> FitResult:
     """The noise model of every gyro/accelerometer channel of RECORDING, with the settings and
-    defaults of `imunoise analyze` (the same recording and settings give the same model.yaml)."""
+    defaults of `imunoise analyze` (the same recording and settings give the same model.yaml).
+    GAUSS_MARKOV: None (default) fits the model with Gauss-Markov terms apart and keeps it
+    when its penalized deviance is lower, True = `--gauss-markov`, False = `--no-gauss-markov`."""
     r = _core.fit(recording, taus=taus, confidence=float(confidence),
                   interval_draws=int(interval_draws), bootstrap=bootstrap, seed=int(seed),
-                  gauss_markov=bool(gauss_markov), sinusoid_hz=[float(f) for f in sinusoid_hz],
+                  gauss_markov=None if gauss_markov is None else bool(gauss_markov),
+                  sinusoid_hz=[float(f) for f in sinusoid_hz],
                   tau_min_s=float(tau_min_s), tau_max_s=float(tau_max_s),
                   low_pass_check=bool(low_pass_check), gaps=gaps, threads=int(threads))
     return FitResult(Model(r["model_yaml"], recording.source_path), r["axes"], r["tau0_s"])

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -116,6 +117,51 @@ TEST(AxisAnalysis, LowPassRegionIsDroppedFromTheFit) {
   // With the bent points dropped, N is still right (the average keeps the white level at
   // long τ): within the few-% spread of a 60 000-sample record.
   EXPECT_NEAR(low.model.terms[1].value / truth.white_noise, 1.0, 0.05);
+}
+
+TEST(AxisAnalysis, PsdCheckStopsBelowADetectedLowPassCorner) {
+  // White noise through a 2nd-order Butterworth at fs/4 (bilinear, corner pre-warped; the
+  // gentlest MEMS DLPF): |H|² = 1/(1 + (f/f_c)⁴), 3.6 % down at 0.44·f_c, so a check up to
+  // 0.4·fs would fail on the roll-off. The corner is found from the PSD and the check stops at
+  // kPsdCheckLowPassFraction of it, where the filter is 0.4 % down.
+  NoiseCoefficients truth;
+  truth.white_noise = 1e-3;
+  const double fs = 100.0, corner = 25.0;
+  const std::vector<double> white = simulate(truth, fs, 3600.0, 5);
+  const double k = std::tan(std::numbers::pi * corner / fs);
+  const double norm = 1.0 / (1.0 + std::numbers::sqrt2 * k + k * k);
+  const double b0 = k * k * norm, a1 = 2.0 * (k * k - 1.0) * norm;
+  const double a2 = (1.0 - std::numbers::sqrt2 * k + k * k) * norm;
+  std::vector<double> filtered(white.size());
+  double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
+  for (std::size_t i = 0; i < white.size(); ++i) {
+    const double y = b0 * (white[i] + 2.0 * x1 + x2) - a1 * y1 - a2 * y2;
+    x2 = x1;
+    x1 = white[i];
+    y2 = y1;
+    y1 = y;
+    filtered[i] = y;
+  }
+  AxisAnalysisOptions options;
+  options.bootstrap_replicates = 0;
+  const AxisAnalysis a = analyze_axis("gyro_x", SensorKind::gyro, filtered, 1.0 / fs, 0, options);
+  EXPECT_NEAR(a.psd_check_low_pass_hz / corner, 1.0, 0.05);
+  EXPECT_LE(a.psd_check.f_max_hz, kPsdCheckLowPassFraction * a.psd_check_low_pass_hz);
+  EXPECT_NE(a.model.psd_check_note.find("up to 1/4 of the low-pass corner"), std::string::npos)
+      << a.model.psd_check_note;
+  for (const analysis::PsdMisfitBand& band : a.psd_check.misfits)
+    EXPECT_NE(band.cause, analysis::PsdMisfitCause::low_pass) << a.model.psd_check_note;
+  // The same model over the old band (up to 0.4·fs) fails on the roll-off.
+  const analysis::PsdCrossCheck wide =
+      analysis::cross_check_psd(a.psd, a.fit.coefficients, 1.0 / fs, 0.4 * fs);
+  EXPECT_FALSE(wide.pass);
+  ASSERT_FALSE(wide.misfits.empty());
+  EXPECT_EQ(wide.misfits.back().cause, analysis::PsdMisfitCause::low_pass);
+  // Without the low-pass check (--no-low-pass-check) the band is the full one.
+  options.auto_low_pass = false;
+  const AxisAnalysis off = analyze_axis("gyro_x", SensorKind::gyro, filtered, 1.0 / fs, 0, options);
+  EXPECT_EQ(off.psd_check_low_pass_hz, 0.0);
+  EXPECT_GT(off.psd_check.f_max_hz, 0.3 * fs);
 }
 
 TEST(AxisAnalysis, CandidateSinusoidIsFittedWithItsAmplitude) {

@@ -135,6 +135,14 @@ std::vector<Emitted> fit_notes() {
   axis.name = "gyro_y";
   axis.fit_note = analysis::fit_noise_model(avar, {}).selection_note;
   add_note_parts(out, axis);
+  NoiseCoefficients gm;  // the default fit compares the model with GM terms and keeps it
+  gm.white_noise = 1e-3;
+  gm.gauss_markov = {{1e-3, 20.0}};
+  std::vector<analysis::FitPoint> gm_avar;
+  for (const analysis::FitPoint& p : avar)
+    gm_avar.push_back({p.tau_s, analysis::model_avar(gm, p.tau_s), p.edf});
+  axis.fit_note = analysis::fit_noise_model(gm_avar, {}).selection_note;
+  add_note_parts(out, axis);
   analysis::FitOptions hadamard;
   hadamard.hadamard = true;
   axis.fit_note = analysis::fit_noise_model(hvar, hadamard).selection_note;
