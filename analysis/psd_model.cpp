@@ -306,7 +306,10 @@ std::vector<PsdMisfitBand> misfit_bands(std::vector<ComparedBin> bins) {
       band.cause = low;
     } else if (last - first + 1 <= 2 && is_peak(bins, first, last, extreme)) {
       band.cause = PsdMisfitCause::spectral_line;
-    } else if (count == 1 && !top) {
+    } else if (count == 1 && (!top || (!above && extreme > kSingleBinRollOffRatio))) {
+      // One top bin a few % low is not a roll-off: the highest bins hold 10⁴–10⁵ dof, so a
+      // 1.5 % deficit leaves their 99 % interval (gm class: ×0.985 at 0.36·f_s was named
+      // "the sensor's low-pass filter").
       band.cause = PsdMisfitCause::isolated;
     } else if (top) {
       band.cause = flat ? PsdMisfitCause::level : high;

@@ -74,6 +74,9 @@ struct PsdMisfitBand {
   PsdMisfitCause cause = PsdMisfitCause::level;
 };
 
+/// A single top bin is called a low-pass roll-off only below this measured/model ratio.
+inline constexpr double kSingleBinRollOffRatio = 0.9;
+
 /// Outcome of cross_check_psd().
 struct PsdCrossCheck {
   std::size_t bins_compared = 0;   ///< binned points inside the compared band
@@ -111,8 +114,9 @@ struct PsdCrossCheck {
 /// ends, level when flat, else the end with the larger mean log ratio decides as below; at the
 /// bottom, low_frequency_excess or _deficit; a peak of ≤ 2 bins elsewhere (≥ 1.5× the model,
 /// its neighbours within a third of that excess), spectral_line; any other single bin not at
-/// the top, isolated; at the top, level when flat, else high_frequency_excess (above) or
-/// low_pass (below);
+/// the top, and a single top bin below the model by less than kSingleBinRollOffRatio,
+/// isolated; at the top, level when flat, else high_frequency_excess (above) or low_pass
+/// (below);
 /// otherwise level when flat and over half the compared bins, else band_excess or
 /// band_deficit. Causes are likely, not proven: one low bin cannot tell a warm-up from a
 /// random walk.

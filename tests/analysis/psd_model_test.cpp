@@ -374,6 +374,35 @@ bool has_cause(const PsdCrossCheck& c, PsdMisfitCause cause, double f_in_band = 
   return false;
 }
 
+TEST(PsdMisfit, ASingleTopBinJustBelowTheModelIsNotALowPass) {
+  // A hand-made white spectrum equal to the model except three bins: two isolated mid-band
+  // excesses (so that the check fails) and the top bin low by RATIO. 10⁵ dof per bin: the 99 %
+  // interval is ±0.8 %, so ×0.985 is outside, and alone it is not a roll-off.
+  NoiseCoefficients model;
+  model.white_noise = 1e-3;
+  const auto check_with_top = [&](double ratio) {
+    Spectrum s;
+    for (double f = 0.01; f <= 0.4 / kTau0; f *= std::pow(10.0, 0.1)) {
+      s.frequency_hz.push_back(f);
+      s.density.push_back(model_psd_one_sided(model, f, kTau0));
+      s.dof.push_back(1e5);
+    }
+    s.resolution_hz = 0.001;
+    const std::size_t n = s.density.size();
+    s.density[n / 3] *= 1.05;
+    s.density[2 * n / 3] *= 1.05;
+    s.density[n - 1] *= ratio;
+    return cross_check_psd(s, model, kTau0, 0.4 / kTau0);
+  };
+  const PsdCrossCheck slight = check_with_top(0.985);
+  ASSERT_FALSE(slight.pass);
+  ASSERT_EQ(slight.misfits.size(), 3u);
+  EXPECT_EQ(slight.misfits.back().cause, PsdMisfitCause::isolated);
+  const PsdCrossCheck deep = check_with_top(0.8);
+  ASSERT_EQ(deep.misfits.size(), 3u);
+  EXPECT_EQ(deep.misfits.back().cause, PsdMisfitCause::low_pass);
+}
+
 TEST(PsdMisfit, NamesALineALowPassAMissingWalkAndAWrongLevel) {
   // Three sinusoids (one or two would stay within the allowance of 2 bins), each of power
   // 100× the white level in its bin: a narrow excess at each.
