@@ -122,6 +122,10 @@ std::string psd_remedy(const FindingContext& c) {
          "--tau-min above the filter's time constant; excess at the lowest frequencies → cut "
          "the warm-up from the recording and analyze again";
 }
+std::string walk_or_ramp_remedy(const FindingContext&) {
+  return "a record several times longer tells them apart (R grows like τ², K like τ); a "
+         "known trend (temperature) is a ramp: remove it before the analysis";
+}
 std::string gm_choice_remedy(const FindingContext&) {
   return "nothing to do; analyze --gauss-markov fits the GM terms inside the one model "
          "selection, --no-gauss-markov leaves them out";
@@ -139,7 +143,7 @@ std::string drift_nees_remedy(const FindingContext& c) {
 // pipeline/data_quality.cpp (quality_findings), pipeline/gap_policy.cpp (plan_gaps notes),
 // analysis/noise_fit.cpp (selection notes), pipeline/axis_analysis.cpp (fit and PSD notes),
 // report/report_page.cpp (drift). Order matters where one marker contains another's text.
-constexpr std::array<FindingKind, 21> kFindingKinds{{
+constexpr std::array<FindingKind, 22> kFindingKinds{{
     {"gaps_split", FindingSource::data_quality, "the curves and the PSD are pooled over ",
      "the record has time-stamp gaps; --gaps split analysed the gap-free pieces and pooled "
      "their curves",
@@ -197,6 +201,10 @@ constexpr std::array<FindingKind, 21> kFindingKinds{{
      "σ and T_c of a Gauss-Markov term enter the model nonlinearly; the least-squares "
      "intervals do not cover them",
      gm_bootstrap_remedy},
+    {"ramp_as_random_walk", FindingSource::fit_note, "ramp replaced by random_walk",
+     "a ramp and a random walk both rise at the longest τ, where few estimates are; K in the "
+     "ramp's place fitted almost as well, and K is the stationary sensor's term",
+     walk_or_ramp_remedy},
     {"gm_model_compared", FindingSource::fit_note, "Gauss-Markov model ",
      "the model with Gauss-Markov terms and the power-law model were fitted apart and the one "
      "with the lower penalized deviance D + p·κ·n_used/n_eff was kept (theory.md §4.3)",

@@ -143,6 +143,14 @@ std::vector<Emitted> fit_notes() {
     gm_avar.push_back({p.tau_s, analysis::model_avar(gm, p.tau_s), p.edf});
   axis.fit_note = analysis::fit_noise_model(gm_avar, {}).selection_note;
   add_note_parts(out, axis);
+  NoiseCoefficients ramp;  // a ramp seen only where the EDF is 2-6: K fits as well
+  ramp.white_noise = 1e-3;
+  ramp.ramp = 1e-6;
+  std::vector<analysis::FitPoint> ramp_avar;
+  for (const analysis::FitPoint& p : avar)
+    ramp_avar.push_back({p.tau_s, analysis::model_avar(ramp, p.tau_s), p.edf});
+  axis.fit_note = analysis::fit_noise_model(ramp_avar, {}).selection_note;
+  add_note_parts(out, axis);
   analysis::FitOptions hadamard;
   hadamard.hadamard = true;
   axis.fit_note = analysis::fit_noise_model(hvar, hadamard).selection_note;
