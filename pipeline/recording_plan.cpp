@@ -151,6 +151,12 @@ PerTerm<TermPrecision> expected_precision(const NoiseCoefficients& model, double
     apply_model_noise_type(curve, model);
     analysis::FitOptions fit_options = options.fit;
     if (fit_options.tau_min_s <= 0.0) fit_options.tau_min_s = low_pass_tau_min(curve);
+    // On the exact curve of a model without GM terms the power-law fit has deviance ~0, so the
+    // automatic GM candidate can never win (it needs a strictly lower penalized deviance):
+    // skip it, the costly half of the fit, at every duration the plan tries.
+    if (model.gauss_markov.empty() &&
+        fit_options.gauss_markov == analysis::GaussMarkovMode::automatic)
+      fit_options.gauss_markov = analysis::GaussMarkovMode::off;
     std::vector<analysis::FitPoint> points;
     const analysis::FitResult fit = fit_with_model_noise_types(curve, fit_options, points);
     // 3. The default intervals: draws of the OAVAR vector under the fitted model, refitted.

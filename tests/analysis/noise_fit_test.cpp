@@ -395,31 +395,31 @@ TEST(NoiseFit, AutomaticGaussMarkovModeKeepsGmTermsWhereTheDataShowThem) {
   // 100 Hz: N + GM (σ 1e-3 rad/s, T_c 30 s) GM kept 100/100 (one GM in 99, mean σ/σ_true 1.005,
   // T_c/T_c,true 1.013), B or K never; N + K (§8) GM kept 2/100 (T_c ≈ 195 s standing in for
   // K, seeds 3 and 55), K 98/100; N + B + K GM 0/100; white only (1 h) GM 0/100. Bounds below
-  // from those rates: P(> 3 of 40 | p = 0.02) = 0.8 %.
+  // from those rates: P(> 2 of 20 | p = 0.02) = 0.7 %, P(< 9 of 10 | p = 0.99) = 0.4 %.
   models::ChannelNoiseModel with_gm;
   with_gm.white_noise = 5e-4;
   with_gm.gauss_markov = {{1e-3, 30.0}};
   int gm_kept = 0;
-  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const FitResult fit = fit_noise_model(simulated_points(with_gm, 100.0, 7200.0, seed));
     gm_kept += fit.coefficients.gauss_markov.size() == 1;
     EXPECT_FALSE(fit.terms[kB].identified || fit.terms[kK].identified) << fit.selection_note;
   }
-  EXPECT_GE(gm_kept, 19);
+  EXPECT_GE(gm_kept, 9);
   models::ChannelNoiseModel random_walk;
   random_walk.white_noise = kExampleN;
   random_walk.random_walk = kExampleK;
   int false_gm = 0;
-  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const FitResult fit = fit_noise_model(simulated_points(random_walk, 100.0, 7200.0, seed));
     false_gm += !fit.coefficients.gauss_markov.empty();
     EXPECT_NE(fit.selection_note.find("Gauss-Markov "), std::string::npos);
   }
-  EXPECT_LE(false_gm, 3);
+  EXPECT_LE(false_gm, 2);
   models::ChannelNoiseModel white;
   white.white_noise = kExampleN;
   int white_gm = 0;
-  for (std::uint64_t seed = 1; seed <= 10; ++seed)
+  for (std::uint64_t seed = 1; seed <= 5; ++seed)
     white_gm += !fit_noise_model(simulated_points(white, 100.0, 3600.0, seed))
                      .coefficients.gauss_markov.empty();
   EXPECT_EQ(white_gm, 0);
@@ -440,14 +440,21 @@ TEST(NoiseFit, ARampGivesWayToARandomWalkOnlyWhereTheyFitAlike) {
   ramp.quantization = 1e-4;
   ramp.white_noise = 1e-4;
   ramp.ramp = 2.7e-8;
+  // The rule acts in the power-law selection, so the GM candidate (the costly half of the
+  // default fit, 35x slower under the sanitizers) is left out here; the seed study above is
+  // of the default mode.
+  FitOptions power_law;
+  power_law.gauss_markov = GaussMarkovMode::off;
   int false_ramps = 0, ramps_kept = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
-    const FitResult w = fit_noise_model(simulated_points(walk, 100.0, 7200.0, seed));
+    const FitResult w = fit_noise_model(simulated_points(walk, 100.0, 7200.0, seed), power_law);
     false_ramps += w.terms[kR].identified;
     if (w.selection_note.find("ramp replaced by random_walk") != std::string::npos) {
       EXPECT_TRUE(w.terms[kK].identified && !w.terms[kR].identified) << w.selection_note;
     }
-    ramps_kept += fit_noise_model(simulated_points(ramp, 100.0, 7200.0, seed)).terms[kR].identified;
+    ramps_kept += fit_noise_model(simulated_points(ramp, 100.0, 7200.0, seed), power_law)
+                      .terms[kR]
+                      .identified;
   }
   EXPECT_LE(false_ramps, 2);
   EXPECT_GE(ramps_kept, 23);
