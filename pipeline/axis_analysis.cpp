@@ -18,7 +18,6 @@
 #include "common/number_text.h"
 #include "models/bias_instability_gm.h"
 #include "pipeline/bootstrap.h"
-#include "pipeline/low_pass_corner.h"
 
 namespace imunoise::pipeline {
 
@@ -397,12 +396,11 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   for (const analysis::FittedLine& line : lines.fit.lines)
     with_lines.sinusoids.push_back(line.value);
   double check_max_hz = 0.4 / tau0_s;
-  if (options.auto_low_pass) {
-    const LowPassCorner corner = find_low_pass_corner(out.psd, out.fit.coefficients, tau0_s);
-    if (corner.found && kPsdCheckLowPassFraction * corner.corner_hz < check_max_hz) {
-      out.psd_check_low_pass_hz = corner.corner_hz;
-      check_max_hz = kPsdCheckLowPassFraction * corner.corner_hz;
-    }
+  out.low_pass = find_low_pass_corner(out.psd, out.fit.coefficients, tau0_s);
+  if (options.auto_low_pass && out.low_pass.found &&
+      kPsdCheckLowPassFraction * out.low_pass.corner_hz < check_max_hz) {
+    out.psd_check_low_pass_hz = out.low_pass.corner_hz;
+    check_max_hz = kPsdCheckLowPassFraction * out.low_pass.corner_hz;
   }
   out.psd_check = analysis::cross_check_psd(out.psd, with_lines, tau0_s, check_max_hz);
   progress(replicates > 0 ? "bootstrap" : "intervals", 4);

@@ -22,6 +22,7 @@
 #include "common/progress_callback.h"
 #include "models/noise_model.h"
 #include "pipeline/bootstrap.h"
+#include "pipeline/low_pass_corner.h"
 
 namespace imunoise::pipeline {
 
@@ -70,6 +71,9 @@ struct AxisAnalysis {
   analysis::SlopeReadoff slope;
   analysis::PsdReadoff psd_readoff;
   analysis::PsdCrossCheck psd_check;
+  /// The PSD's low-pass roll-off against the fitted model (pipeline/low_pass_corner.h), found
+  /// once per axis: it bounds psd_check's band and makes the recording's low-pass finding.
+  LowPassCorner low_pass;
   /// The −3 dB low-pass corner that bounded psd_check's band (pipeline/low_pass_corner.h;
   /// 0 = none found or the check off) [Hz].
   double psd_check_low_pass_hz = 0.0;
@@ -100,8 +104,9 @@ std::string_view psd_misfit_cause_text(analysis::PsdMisfitCause cause);
 
 /// The PSD cross-check note of model.yaml: "B of C PSD bins outside their 99 % interval
 /// (F1–F2 Hz)" (", up to 1/4 of the low-pass corner X Hz" inside the brackets when
-/// LOW_PASS_CORNER_HZ > 0 bounded the band), and when the check failed its largest bands (at most three, by bins; in
-/// frequency order), each "above|below the model at F1–F2 Hz (n bins, up to ×r): likely …".
+/// LOW_PASS_CORNER_HZ > 0 bounded the band), and when the check failed its largest bands (at most
+/// three, by bins; in frequency order), each "above|below the model at F1–F2 Hz (n bins, up to ×r):
+/// likely …".
 std::string psd_check_note(const analysis::PsdCrossCheck& check, double low_pass_corner_hz = 0.0);
 
 /// The PSD cross-check compares bins up to this fraction of a detected low-pass corner: a

@@ -275,11 +275,11 @@ RecordingAnalysis analyze(const Recording& recording, const std::string& source,
     result.axes.push_back(std::move(*r));
   }
   {
-    // The low-pass corner of each channel from its PSD against its fitted model.
+    // The low-pass corner of each channel (found by analyze_axis from its PSD and model).
     std::string listed;
     double lowest_tau_min = 0.0;
     for (const AxisAnalysis& a : result.axes) {
-      const LowPassCorner corner = find_low_pass_corner(a.psd, a.fit.coefficients, tau0_s);
+      const LowPassCorner& corner = a.low_pass;
       if (!corner.found) continue;
       listed += std::string(listed.empty() ? "" : ", ") + a.model.name + " " +
                 significant_number_text(corner.corner_hz, 3) + " Hz (" +
