@@ -18,10 +18,11 @@
 #include "analysis/edf.h"
 #include "analysis/golden_section.h"
 #include "analysis/nnls.h"
+#include "analysis/noise_fit_internal.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
-namespace {
+namespace fit_detail {
 
 /// GM correlation times per decade on the initial grid (theory.md §4.3: 3–5 per decade).
 constexpr double kGaussMarkovGridPerDecade = 3.0;
@@ -42,23 +43,6 @@ constexpr double kLnTauCTolerance = 1e-6;
 /// A kept ramp gives way to K when K fits within this fraction of one parameter's penalty
 /// (fit_noise_model, after the elimination).
 constexpr double kRampOverWalkMargin = 1.0 / 3.0;
-
-/// The used points, as parallel arrays.
-struct Data {
-  std::vector<double> tau, y, nu;
-  std::vector<std::size_t> index;  ///< position in the caller's span
-  std::size_t size() const { return tau.size(); }
-};
-
-enum class ColumnKind { power_law, gauss_markov, sinusoid };
-
-/// One basis function of the linear model; its coefficient is a variance.
-struct Column {
-  ColumnKind kind = ColumnKind::power_law;
-  NoiseTerm term = NoiseTerm::white_noise;  ///< power_law only
-  double tau_c_s = 0.0;                     ///< gauss_markov only
-  double frequency_hz = 0.0;                ///< sinusoid only
-};
 
 double basis(const Column& column, double tau_s, bool hadamard) {
   switch (column.kind) {
@@ -94,14 +78,6 @@ std::string column_name(const Column& column) {
   return "?";
 }
 
-/// Solution of the weighted problem for one column set.
-struct Solution {
-  Eigen::VectorXd c;      ///< variances per column, ≥ 0
-  Eigen::VectorXd model;  ///< model variance at each used τ (including the offset)
-  double sse = 0.0;       ///< Σ (ν_k/2)(y_k/m_k − 1)² with m_k the floored model
-  double deviance = 0.0;  ///< Σ ν_k (r_k − 1 − ln r_k), r_k = y_k/m_k
-};
-
 double floored(double model, double y) { return std::max(model, kModelFloorFraction * y); }
 
 /// Iteratively re-weighted NNLS (theory.md §4.3): first solve with m_k = y_k (or with
@@ -109,7 +85,7 @@ double floored(double model, double y) { return std::max(model, kModelFloorFract
 /// the model is stationary. OFFSET is a fixed variance added to the model (terms held at given
 /// values), size data.size().
 Solution solve(const Data& data, const std::vector<Column>& columns, bool hadamard, int iterations,
-               const Eigen::VectorXd& offset, const Eigen::VectorXd* initial_model = nullptr) {
+               const Eigen::VectorXd& offset, const Eigen::VectorXd* initial_model) {
   const auto n = static_cast<Eigen::Index>(data.size());
   const auto p = static_cast<Eigen::Index>(columns.size());
   Eigen::MatrixXd phi(n, p);
@@ -119,6 +95,11 @@ Solution solve(const Data& data, const std::vector<Column>& columns, bool hadama
                         hadamard);
   Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(data.y.data(), n);
   Eigen::VectorXd nu = Eigen::Map<const Eigen::VectorXd>(data.nu.data(), n);
+  const bool correlated = data.correlation_factor.rows() == n && n > 0;
+  if (correlated) {
+    initial_model = &data.weight_model;
+    iterations = 0;
+  }
 
   Solution s;
   s.c = Eigen::VectorXd::Zero(p);
@@ -129,11 +110,19 @@ Solution solve(const Data& data, const std::vector<Column>& columns, bool hadama
   for (int pass = 0; pass <= iterations && p > 0; ++pass) {
     // Row k scaled by √w_k = √(ν_k/2)/m_k: relative residuals, each of variance ≈ 1.
     const Eigen::VectorXd row_scale = (0.5 * nu).cwiseSqrt().cwiseQuotient(m);
-    const Eigen::MatrixXd A = row_scale.asDiagonal() * phi;
-    const Eigen::VectorXd b = row_scale.cwiseProduct(y - offset);
+    Eigen::MatrixXd A = row_scale.asDiagonal() * phi;
+    Eigen::VectorXd b = row_scale.cwiseProduct(y - offset);
+    if (correlated) {
+      // Generalized least squares: with Cov = DρD the whitened rows L⁻¹D⁻¹ are independent of
+      // unit variance, so the same NNLS minimizes the GLS form (theory.md §3.5, §4.3).
+      const auto lower = data.correlation_factor.triangularView<Eigen::Lower>();
+      lower.solveInPlace(A);
+      lower.solveInPlace(b);
+    }
     // Generous iteration limit (Lawson & Hanson suggest 3·n): never reached in the tests, and a
     // slow but valid solve must not become an error inside the model selection.
     s.c = nnls(A, b, static_cast<int>(10 * p));
+    if (correlated) s.objective = (A * s.c - b).squaredNorm();
     const Eigen::VectorXd model = phi * s.c + offset;
     double change = 0.0;
     for (Eigen::Index k = 0; k < n; ++k)
@@ -149,6 +138,7 @@ Solution solve(const Data& data, const std::vector<Column>& columns, bool hadama
     s.sse += 0.5 * nu(k) * (ratio - 1.0) * (ratio - 1.0);
     s.deviance += nu(k) * (ratio - 1.0 - std::log(ratio));
   }
+  if (!correlated) s.objective = s.deviance;
   return s;
 }
 
@@ -158,7 +148,8 @@ Eigen::VectorXd zero_offset(const Data& data) {
 
 /// Refines the correlation time of every GM column by a 1-D search in ln T_c within its
 /// bracket, all linear coefficients re-solved at each trial (theory.md §4.3 "refine by
-/// nonlinear WLS"): minimizes the deviance, i.e. maximizes the likelihood profiled over the
+/// nonlinear WLS"): minimizes the deviance (the GLS form when the data carry a correlation
+/// factor), i.e. maximizes the likelihood profiled over the
 /// linear coefficients. Coordinate sweeps until no T_c moves by more than 1e-9 relative.
 /// Within one search the weights start from the model of the current columns and are
 /// re-weighted once per trial (not ITERATIONS times from the data): a trial T_c changes the
@@ -179,7 +170,7 @@ void refine_gauss_markov(const Data& data, std::vector<Column>& columns, bool ha
       const Eigen::VectorXd current = solve(data, columns, hadamard, iterations, offset).model;
       const auto objective = [&](double ln_tau_c) {
         trial[gm[g]].tau_c_s = std::exp(ln_tau_c);
-        return solve(data, trial, hadamard, std::min(iterations, 1), offset, &current).deviance;
+        return solve(data, trial, hadamard, std::min(iterations, 1), offset, &current).objective;
       };
       const double before = std::log(columns[gm[g]].tau_c_s);
       const double best = golden_section_minimum(objective, ln_brackets[g].first,
@@ -317,7 +308,7 @@ double residual_in_halfwidths(const FitPoint& p, double model_variance) {
 /// Assembles the FitResult of the final column set.
 FitResult make_result(std::span<const FitPoint> points, const Data& data,
                       const std::vector<Column>& columns, const Solution& s, bool hadamard,
-                      double effective_points, std::string note, bool residuals = true) {
+                      double effective_points, std::string note, bool residuals) {
   FitResult r;
   r.hadamard = hadamard;
   r.used = data.index;
@@ -435,7 +426,9 @@ std::vector<std::pair<double, double>> brackets_around(const std::vector<Column>
   return out;
 }
 
-}  // namespace
+}  // namespace fit_detail
+
+using namespace fit_detail;
 
 FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& options) {
   if (options.gauss_markov == GaussMarkovMode::automatic) {
@@ -561,62 +554,6 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
   return make_result(points, data, columns, s, hadamard, n_eff, std::move(note));
 }
 
-namespace {
-
-/// The points FIT used (POINTS[USED]) as fit data; WHERE names the caller in errors.
-Data used_data(std::span<const FitPoint> points, std::span<const std::size_t> used,
-               const char* where) {
-  Data data;
-  for (std::size_t k : used) {
-    IMUNOISE_EXPECT(k < points.size(), std::string(where) + ": used index " + std::to_string(k) +
-                                           " is out of range (" + std::to_string(points.size()) +
-                                           " points)");
-    const FitPoint& p = points[k];
-    IMUNOISE_CHECK(p.avar > 0.0 && p.edf > 0.0, AnalysisError,
-                   std::string(where) + ": point " + std::to_string(k) +
-                       " has a zero variance or no EDF and cannot be fitted");
-    data.tau.push_back(p.tau_s);
-    data.y.push_back(p.avar);
-    data.nu.push_back(p.edf);
-    data.index.push_back(k);
-  }
-  return data;
-}
-
-/// The columns of a fitted structure: its identified power-law terms, its sinusoid
-/// frequencies and its GM correlation times.
-std::vector<Column> structure_columns(const FitResult& structure) {
-  std::vector<Column> columns;
-  for (NoiseTerm term : kNoiseTerms)
-    if (structure.terms[term].identified)
-      columns.push_back({ColumnKind::power_law, term, 0.0, 0.0});
-  for (const Sinusoid& sine : structure.coefficients.sinusoids)
-    columns.push_back({ColumnKind::sinusoid, NoiseTerm::white_noise, 0.0, sine.frequency_hz});
-  for (const GaussMarkov& gm : structure.coefficients.gauss_markov)
-    columns.push_back({ColumnKind::gauss_markov, NoiseTerm::white_noise, gm.tau_c_s, 0.0});
-  return columns;
-}
-
-}  // namespace
-
-FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
-                            const FitOptions& options) {
-  validate_options(options);
-  validate_points(points, "refit_fixed_terms");
-  IMUNOISE_EXPECT(structure.used.size() >= 2,
-                  "refit_fixed_terms: the structure uses fewer than 2 points");
-  const Data data = used_data(points, structure.used, "refit_fixed_terms");
-  const bool hadamard = structure.hadamard;
-  std::vector<Column> columns = structure_columns(structure);
-  IMUNOISE_CHECK(!columns.empty(), AnalysisError,
-                 "refit_fixed_terms: the structure has no identified term");
-  refine_gauss_markov(data, columns, hadamard, options.weight_iterations,
-                      brackets_around(columns, kRefitBracket));
-  const Solution s = solve(data, columns, hadamard, options.weight_iterations, zero_offset(data));
-  return make_result(points, data, columns, s, hadamard, effective_point_count(data), "",
-                     /*residuals=*/false);
-}
-
 std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> points,
                                                  const FitResult& fit, int per_decade) {
   IMUNOISE_EXPECT(per_decade >= 1 && per_decade <= 10,
@@ -654,138 +591,6 @@ std::vector<GaussMarkov> multi_gm_representation(std::span<const FitPoint> point
     if (v > 0.0) out.push_back({std::sqrt(v), columns[j].tau_c_s});
   }
   return out;
-}
-
-PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> points,
-                                                     const FitResult& fit, double confidence) {
-  PerTerm<CoefficientInterval> out{};
-  std::vector<NoiseTerm> active;
-  for (NoiseTerm term : kNoiseTerms) {
-    const TermFit& t = fit.terms[term];
-    if (t.identified && t.value > 0.0) active.push_back(term);
-  }
-  if (active.empty() || fit.used.empty()) return out;
-  const Data data = used_data(points, fit.used, "least_squares_intervals");
-  const auto p = static_cast<Eigen::Index>(active.size());
-  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(p, p);
-  for (std::size_t k = 0; k < data.size(); ++k) {
-    const double model = model_variance(fit.coefficients, data.tau[k], fit.hadamard);
-    if (!(model > 0.0)) continue;
-    Eigen::VectorXd phi(p);
-    for (Eigen::Index i = 0; i < p; ++i) {
-      phi(i) = term_basis(active[static_cast<std::size_t>(i)], data.tau[k], fit.hadamard);
-    }
-    normal += data.nu[k] / (2.0 * model * model) * phi * phi.transpose();
-  }
-  const Eigen::MatrixXd cov = normal.completeOrthogonalDecomposition().pseudoInverse();
-  // Two-sided normal quantile: P(Z² ≤ z²) = confidence with Z² ~ χ²₁.
-  const double z = std::sqrt(chi_square_quantile(confidence, 1.0));
-  for (Eigen::Index i = 0; i < p; ++i) {
-    const auto t = static_cast<std::size_t>(active[static_cast<std::size_t>(i)]);
-    const double c = fit.terms[t].value;
-    const double sd_c = std::sqrt(std::max(cov(i, i), 0.0)) / (2.0 * c);  // d(c²) = 2c·dc
-    out[t] = {std::max(0.0, c - z * sd_c), c + z * sd_c};
-  }
-  return out;
-}
-
-namespace {
-
-/// f = uᵀCu/uᵀu (at least 1) for the weighted basis PHI of a term, u made orthogonal to the
-/// columns the fit without it uses (coefficient > 0), with the weights √(ν/2)/m of its
-/// solution: the factor by which the correlation C of the estimates inflates the variance of
-/// the term's estimate over the independent-points value the deviance assumes.
-double direction_inflation(const Data& data, const std::vector<Column>& columns, bool hadamard,
-                           int weight_iterations, const Eigen::VectorXd& phi,
-                           std::span<const double> correlation) {
-  const auto n = static_cast<Eigen::Index>(data.size());
-  const Solution s = solve(data, columns, hadamard, weight_iterations, Eigen::VectorXd::Zero(n));
-  Eigen::VectorXd scale(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    scale(k) = std::sqrt(0.5 * data.nu[i]) / floored(s.model(k), data.y[i]);
-  }
-  std::vector<Eigen::Index> active;
-  for (Eigen::Index j = 0; j < s.c.size(); ++j)
-    if (s.c(j) > 0.0) active.push_back(j);
-  Eigen::MatrixXd a(n, static_cast<Eigen::Index>(active.size()));
-  for (Eigen::Index j = 0; j < a.cols(); ++j)
-    for (Eigen::Index k = 0; k < n; ++k)
-      a(k, j) =
-          scale(k) * basis(columns[static_cast<std::size_t>(active[static_cast<std::size_t>(j)])],
-                           data.tau[static_cast<std::size_t>(k)], hadamard);
-  Eigen::VectorXd u = scale.cwiseProduct(phi);
-  if (a.cols() > 0) u -= a * a.colPivHouseholderQr().solve(u);
-  const double uu = u.squaredNorm();
-  if (!(uu > 0.0)) return 1.0;
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> c(
-      correlation.data(), n, n);
-  const double f = u.dot(c * u) / uu;
-  return std::isfinite(f) ? std::max(f, 1.0) : 1.0;
-}
-
-}  // namespace
-
-double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
-                           double confidence, int weight_iterations,
-                           std::span<const double> used_correlation) {
-  if (fit.used.empty()) return std::numeric_limits<double>::infinity();
-  const Data data = used_data(points, fit.used, "profile_upper_bound");
-  std::vector<Column> columns = structure_columns(fit);
-  std::erase_if(columns, [term](const Column& c) {
-    return c.kind == ColumnKind::power_law && c.term == term;
-  });
-  const auto n = static_cast<Eigen::Index>(data.size());
-  Eigen::VectorXd phi(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    phi(k) = term_basis(term, data.tau[static_cast<std::size_t>(k)], fit.hadamard);
-  }
-  // D(c): the deviance of the best fit of the other terms with c²·φ held in the model.
-  const auto deviance_at = [&](double c) {
-    return solve(data, columns, fit.hadamard, weight_iterations, c * c * phi).deviance;
-  };
-  const double d0 = deviance_at(0.0);
-  double inflation = static_cast<double>(data.size()) / effective_point_count(data);
-  if (!used_correlation.empty()) {
-    IMUNOISE_EXPECT(used_correlation.size() == data.size() * data.size(),
-                    "profile_upper_bound: the correlation must be n_used x n_used");
-    inflation =
-        direction_inflation(data, columns, fit.hadamard, weight_iterations, phi, used_correlation);
-  }
-  const double target = chi_square_quantile(confidence, 1.0) * inflation;
-  double c_hi = 0.0;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    if (phi(k) > 0.0) {
-      c_hi = std::max(c_hi, std::sqrt(100.0 * data.y[static_cast<std::size_t>(k)] / phi(k)));
-    }
-  }
-  if (!(c_hi > 0.0) || !(deviance_at(c_hi) - d0 > target)) {
-    return std::numeric_limits<double>::infinity();
-  }
-  double c_lo = 0.0;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (c_lo + c_hi);
-    (deviance_at(mid) - d0 > target ? c_hi : c_lo) = mid;
-  }
-  return c_hi;
-}
-
-FitResult refit_with_term_held(std::span<const FitPoint> points, const FitResult& fit,
-                               NoiseTerm term, double held, int weight_iterations) {
-  IMUNOISE_EXPECT(
-      !fit.terms[term].identified && std::isfinite(held) && held >= 0.0 && fit.used.size() >= 2,
-      "refit_with_term_held: needs a dropped term, a finite value >= 0 and 2 used points");
-  const Data data = used_data(points, fit.used, "refit_with_term_held");
-  const std::vector<Column> columns = structure_columns(fit);
-  Eigen::VectorXd offset(static_cast<Eigen::Index>(data.size()));
-  for (std::size_t k = 0; k < data.size(); ++k)
-    offset(static_cast<Eigen::Index>(k)) =
-        held * held * term_basis(term, data.tau[k], fit.hadamard);
-  const Solution s = solve(data, columns, fit.hadamard, weight_iterations, offset);
-  FitResult r = make_result(points, data, columns, s, fit.hadamard, fit.effective_points, "",
-                            /*residuals=*/false);
-  coefficient(r.coefficients, term) = held;
-  return r;
 }
 
 }  // namespace imunoise::analysis

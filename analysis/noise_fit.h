@@ -145,10 +145,25 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
 /// choice. The estimator the parametric bootstrap re-runs on each simulated replicate.
 /// Only weight_iterations is read from OPTIONS; the basis (AVAR/HVAR) is STRUCTURE's.
 /// The result has no residual_halfwidths (empty): the refits of a bootstrap never read them.
-/// @throws AnalysisError when a used point is unusable or the structure has no term;
-///   ContractViolation when a used index is out of range or fewer than 2 points are used.
+/// With USED_CORRELATION (row-major n_used², the correlation of the estimates at
+/// STRUCTURE.used, e.g. analysis/variance_covariance.h under the fitted model) the estimator is
+/// feasible generalized least squares: Cov = DρD with D = diag(m_k·√(2/ν_k)), m_k STRUCTURE's
+/// model held (not re-weighted per solve), i.e. the covariance across τ (theory.md §3.5) of
+/// the estimates under that model as the weighting matrix.
+/// @throws AnalysisError when a used point is unusable, the structure has no term or the
+///   correlation is not positive definite; ContractViolation when a used index is out of
+///   range, fewer than 2 points are used or USED_CORRELATION has the wrong size.
 FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
-                            const FitOptions& options);
+                            const FitOptions& options,
+                            std::span<const double> used_correlation = {});
+
+/// FIT's structure (as selected by fit_noise_model) re-estimated by generalized least squares
+/// with USED_CORRELATION, as refit_fixed_terms() does, but a complete result: residuals and
+/// FIT's selection note kept. The `--estimator gls` of the analysis (docs/validation.md
+/// compares it with the independent-point fit).
+/// @throws as refit_fixed_terms(); ContractViolation when USED_CORRELATION is empty.
+FitResult generalized_refit(std::span<const FitPoint> points, const FitResult& fit,
+                            const FitOptions& options, std::span<const double> used_correlation);
 
 /// Replaces bias instability B by first-order GM terms (theory.md §4.4 "Preferred"): correlation
 /// times 1/per_decade decade apart (at least 2) spanning the fitted τ range

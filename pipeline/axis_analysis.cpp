@@ -220,33 +220,39 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
   }
 }
 
+std::vector<double> used_point_correlation(const analysis::FitResult& fit,
+                                           std::span<const std::int64_t> m_list, double tau0_s,
+                                           std::int64_t total_samples) {
+  std::vector<double> used_correlation;
+  std::vector<std::int64_t> used_m;
+  for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
+  if (used_m.empty()) return used_correlation;
+  const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
+      fit.coefficients, tau0_s, total_samples, used_m, fit.hadamard);
+  const std::size_t n = used_m.size();
+  used_correlation.assign(n * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const double vi = vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+      const double vj = vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
+      used_correlation[i * n + j] =
+          vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
+              ? vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
+                    std::sqrt(vi * vj)
+              : (i == j ? 1.0 : 0.0);
+    }
+  }
+  return used_correlation;
+}
+
 PerTerm<double> selection_upper_bounds(std::span<const analysis::FitPoint> points,
                                        const analysis::FitResult& fit,
                                        std::span<const std::int64_t> m_list, double tau0_s,
                                        std::int64_t total_samples, double confidence,
                                        int weight_iterations) {
-  // The correlation of the variance estimates at the fitted points under the fitted model
-  // (analysis/variance_covariance.h).
-  std::vector<double> used_correlation;
-  std::vector<std::int64_t> used_m;
-  for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
-  if (!used_m.empty()) {
-    const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
-        fit.coefficients, tau0_s, total_samples, used_m, fit.hadamard);
-    const std::size_t n = used_m.size();
-    used_correlation.assign(n * n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = 0; j < n; ++j) {
-        const double vi = vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
-        const double vj = vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
-        used_correlation[i * n + j] =
-            vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
-                ? vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
-                      std::sqrt(vi * vj)
-                : (i == j ? 1.0 : 0.0);
-      }
-    }
-  }
+  // The correlation of the variance estimates at the fitted points under the fitted model.
+  const std::vector<double> used_correlation =
+      used_point_correlation(fit, m_list, tau0_s, total_samples);
   PerTerm<double> upper_bounds{};
   for (NoiseTerm term : kNoiseTerms) {
     upper_bounds[term] = fit.terms[term].identified
@@ -370,6 +376,17 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     fit_options.tau_min_s = low_pass_tau_min(out.oadev);
   }
   out.fit = fit_with_model_noise_types(out.oadev, fit_options, points);
+  std::vector<double> gls_correlation;
+  if (options.generalized_least_squares) {
+    // The selected structure re-estimated with the correlation across τ in the weights, the
+    // correlation re-derived from each new model (two passes: the second moves the
+    // coefficients by far less than their intervals).
+    for (int pass = 0; pass < 2; ++pass) {
+      gls_correlation = used_point_correlation(out.fit, m_oadev, tau0_s, total_samples);
+      out.fit = analysis::generalized_refit(points, out.fit, fit_options, gls_correlation);
+    }
+    gls_correlation = used_point_correlation(out.fit, m_oadev, tau0_s, total_samples);
+  }
   apply_model_noise_type(out.oadev, out.fit.coefficients);
   apply_model_noise_type(out.ohdev, out.fit.coefficients);
 
@@ -434,6 +451,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     boot.seed = options.seed * 1000003ULL + static_cast<std::uint64_t>(axis_index);
     boot.confidence = options.confidence;
     boot.threads = options.threads;
+    boot.used_correlation = gls_correlation;
     if (options.progress) {
       boot.progress = [&progress](std::string_view stage, std::int64_t done, std::int64_t) {
         progress(stage, 4 + done);
@@ -467,7 +485,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     models::Estimate& e = model.terms[t];
     e.value = out.fit.terms[t].identified ? out.fit.terms[t].value : 0.0;
     e.identified = out.fit.terms[t].identified && e.value > 0.0;
-    e.method = "wnnls-oavar";
+    e.method = options.generalized_least_squares ? "gls-oavar" : "wnnls-oavar";
     if (e.identified) {
       e.ci_low = std::min(widened[t].interval.low, e.value);
       e.ci_high = std::max(widened[t].interval.high, e.value);

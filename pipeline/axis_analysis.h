@@ -32,6 +32,10 @@ struct AxisAnalysisOptions {
   analysis::TauGridSpec grid = analysis::parse_tau_grid("log:10");  ///< τ grid of the curves
   analysis::FitOptions fit;   ///< fit settings (tau_min_s 0 = automatic low-pass check)
   bool auto_low_pass = true;  ///< drop leading τ bent below the white line (§4.3)
+  /// Re-estimate the selected structure (and every interval replicate) by generalized least
+  /// squares with the correlation of the estimates under the fitted model, twice re-derived
+  /// (analysis::generalized_refit; `--estimator gls`); false: the independent-point fit.
+  bool generalized_least_squares = false;
   /// PSD window, overlap and detrend of every level of the multi-rate estimate
   /// (analysis/multirate_psd.h); welch.segment_length is the classic L₀ that fixes the
   /// lowest resolution (0 = automatic).
@@ -132,6 +136,14 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
 analysis::FitResult fit_with_model_noise_types(analysis::DeviationCurve& curve,
                                                const analysis::FitOptions& options,
                                                std::vector<analysis::FitPoint>& points);
+
+/// The correlation of the OAVAR (OHVAR when FIT.hadamard) estimates at FIT.used under FIT's
+/// model (analysis/variance_covariance.h), row-major n_used²; M_LIST[k] is the averaging factor
+/// of the k-th fit point, the record TOTAL_SAMPLES samples at period TAU0_S. A point without
+/// variance under the model is uncorrelated.
+std::vector<double> used_point_correlation(const analysis::FitResult& fit,
+                                           std::span<const std::int64_t> m_list, double tau0_s,
+                                           std::int64_t total_samples);
 
 /// The profile upper bound of every term FIT did not identify (0 for identified terms), as the
 /// analysis reports it and widens the identified terms' intervals with

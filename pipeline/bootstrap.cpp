@@ -214,7 +214,7 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
     Replicate& out = results[r];
     try {
       const analysis::FitResult refit =
-          analysis::refit_fixed_terms(scratch.points, fit, fit_options);
+          analysis::refit_fixed_terms(scratch.points, fit, fit_options, options.used_correlation);
       for (std::size_t t = 0; t < 5; ++t) out.terms[t] = refit.terms[t].value;
       for (std::size_t j = 0; j < gm_count && j < refit.coefficients.gauss_markov.size(); ++j) {
         out.gm_sigma.push_back(refit.coefficients.gauss_markov[j].sigma);

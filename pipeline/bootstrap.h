@@ -35,6 +35,10 @@ struct BootstrapOptions {
   std::uint64_t seed = 1;    ///< master seed; replicate r uses (seed, r)
   double confidence = 0.95;  ///< two-sided level of the intervals
   unsigned threads = 1;      ///< worker threads across replicates
+  /// The correlation of the estimates at the fit's used points (row-major, n_used²): each
+  /// replicate is refitted by generalized least squares with it (analysis::refit_fixed_terms);
+  /// empty: the independent-point fit.
+  std::vector<double> used_correlation;
   /// Optional: ("bootstrap", replicates finished, replicates) after each replicate, from the
   /// worker threads. Does not change the result.
   ProgressCallback progress;

@@ -62,7 +62,14 @@ pipeline::AxisAnalysisOptions axis_options(const AnalysisSettings& s, double tau
   options.fit.sinusoid_frequencies_hz = s.sinusoid_hz;
   options.find_lines = !s.no_lines;
   options.fit.tau_max_s = s.tau_max_s;
+  if (!(s.min_edf >= 1.0 && s.min_edf <= 100.0))
+    throw InputError("--min-edf: expected an EDF in [1, 100], got " +
+                     shortest_number_text(s.min_edf));
+  options.fit.min_edf = s.min_edf;
   options.auto_low_pass = !s.no_low_pass_check;
+  if (s.estimator != "wnnls" && s.estimator != "gls")
+    throw InputError("--estimator: expected wnnls or gls, got '" + s.estimator + "'");
+  options.generalized_least_squares = s.estimator == "gls";
   return options;
 }
 
@@ -106,8 +113,19 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
                "no automatic spectral-line search (by default lines standing above the local "
                "PSD continuum, false-alarm probability 1 % per channel, are fitted and removed)")
       ->group(group);
+  cmd.add_option("--estimator", s.estimator,
+                 "coefficient estimator of the selected model: wnnls (default: re-weighted NNLS "
+                 "with the tau points taken as independent) or gls (generalized least squares "
+                 "with their correlation under the fitted model; docs/validation.md compares "
+                 "them)")
+      ->group(group);
   cmd.add_option("--tau-min", s.tau_min_s, "fit only tau >= this [s]")->group(group);
   cmd.add_option("--tau-max", s.tau_max_s, "fit only tau <= this [s]")->group(group);
+  cmd.add_option("--min-edf", s.min_edf,
+                 "fit only tau whose equivalent degrees of freedom are at least this (default " +
+                     shortest_number_text(analysis::FitOptions{}.min_edf) +
+                     "; the longest tau of a record have the fewest)")
+      ->group(group);
   cmd.add_flag("--no-low-pass-check", s.no_low_pass_check,
                "keep the shortest tau even where the curve bends below the white-noise line")
       ->group(group);

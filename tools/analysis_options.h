@@ -35,9 +35,13 @@ struct AnalysisSettings {
   bool no_gauss_markov = false;  ///< `--no-gauss-markov`: power-law terms and sinusoids only
   bool no_low_pass_check = false;
   double tau_min_s = 0.0;
+  double min_edf = analysis::FitOptions{}.min_edf;  ///< `--min-edf`: fit only τ with EDF ≥ this
   double tau_max_s = 0.0;
   std::vector<double> sinusoid_hz;
   bool no_lines = false;  ///< `--no-lines`: no automatic spectral-line search
+  /// `--estimator`: "wnnls" (default: the points weighted as independent) or "gls" (the
+  /// selected structure re-estimated with the correlation across tau).
+  std::string estimator = "wnnls";
   /// Time-stamp gaps: "refuse" (default), "split" or "interpolate" (pipeline::GapPolicy).
   std::string gaps = "refuse";
   /// Outliers of a channel whose outliers carry a finding: "keep", "clip" or "drop" (default).

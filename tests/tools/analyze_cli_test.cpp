@@ -119,6 +119,46 @@ TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
   }
 }
 
+TEST(AnalyzeCli, GeneralizedLeastSquaresEstimatorIsNamedAndKeepsTheTruthInside) {
+  // `--estimator gls` re-estimates the selected model with the correlation across τ; the
+  // estimate's method says so, and N stays inside its interval. A wrong name is refused.
+  const auto dir = make_temp_dir("analyze_gls");
+  const auto model_file = dir / "truth.yaml";
+  write_text(model_file,
+             "sample_rate_hz: 50\n"
+             "gyro:\n  arw_rad_per_sqrt_s: 1.16355e-4\n  rrw_rad_per_s_sqrt_s: 6.80678e-6\n"
+             "accel:\n  vrw_m_per_s_sqrt_s: 1.471e-3\n"
+             "  z: {specific_force_m_per_s2: -9.80665}\n");
+  const auto rec = dir / "rec.csv";
+  ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 30min --seed 5 -o " +
+                         rec.string())
+                .exit_code,
+            0);
+  const auto out = dir / "out";
+  const CommandResult r =
+      run_imunoise("analyze " + rec.string() + " --estimator gls -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const models::NoiseModel model = io::load_model_yaml((out / "model.yaml").string());
+  const models::AxisModel* gx = model.find_axis("gyro_x");
+  ASSERT_NE(gx, nullptr);
+  const auto& n = gx->terms[static_cast<std::size_t>(NoiseTerm::white_noise)];
+  EXPECT_EQ(n.method, "gls-oavar");
+  EXPECT_LE(n.ci_low, 1.16355e-4);
+  EXPECT_GE(n.ci_high, 1.16355e-4);
+
+  const CommandResult bad =
+      run_imunoise("analyze " + rec.string() + " --estimator ols -o " + (dir / "bad").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--estimator: expected wnnls or gls, got 'ols'"), std::string::npos)
+      << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad" / "model.yaml"));
+  const CommandResult edf =
+      run_imunoise("analyze " + rec.string() + " --min-edf 0.5 -o " + (dir / "bad").string());
+  EXPECT_NE(edf.exit_code, 0);
+  EXPECT_NE(edf.err.find("--min-edf: expected an EDF in [1, 100], got 0.5"), std::string::npos)
+      << edf.err;
+}
+
 TEST(AnalyzeCli, TooShortRecordStopsWithAClearMessage) {
   const auto dir = make_temp_dir("analyze_short");
   const auto rec = dir / "rec.csv";

@@ -1,0 +1,255 @@
+/// @file
+/// @brief The refits of a given structure (the interval draws' and GLS's), the least-squares
+/// intervals, the profile upper bounds and the fit with a term held (see noise_fit.h; theory.md
+/// §4.3).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "analysis/chi_square.h"
+#include "analysis/noise_fit.h"
+#include "analysis/noise_fit_internal.h"
+#include "analysis/noise_terms.h"
+#include "common/errors.h"
+
+namespace imunoise::analysis {
+
+namespace fit_detail {
+
+/// The points FIT used (POINTS[USED]) as fit data; WHERE names the caller in errors.
+Data used_data(std::span<const FitPoint> points, std::span<const std::size_t> used,
+               const char* where) {
+  Data data;
+  for (std::size_t k : used) {
+    IMUNOISE_EXPECT(k < points.size(), std::string(where) + ": used index " + std::to_string(k) +
+                                           " is out of range (" + std::to_string(points.size()) +
+                                           " points)");
+    const FitPoint& p = points[k];
+    IMUNOISE_CHECK(p.avar > 0.0 && p.edf > 0.0, AnalysisError,
+                   std::string(where) + ": point " + std::to_string(k) +
+                       " has a zero variance or no EDF and cannot be fitted");
+    data.tau.push_back(p.tau_s);
+    data.y.push_back(p.avar);
+    data.nu.push_back(p.edf);
+    data.index.push_back(k);
+  }
+  return data;
+}
+
+/// The columns of a fitted structure: its identified power-law terms, its sinusoid
+/// frequencies and its GM correlation times.
+std::vector<Column> structure_columns(const FitResult& structure) {
+  std::vector<Column> columns;
+  for (NoiseTerm term : kNoiseTerms)
+    if (structure.terms[term].identified)
+      columns.push_back({ColumnKind::power_law, term, 0.0, 0.0});
+  for (const Sinusoid& sine : structure.coefficients.sinusoids)
+    columns.push_back({ColumnKind::sinusoid, NoiseTerm::white_noise, 0.0, sine.frequency_hz});
+  for (const GaussMarkov& gm : structure.coefficients.gauss_markov)
+    columns.push_back({ColumnKind::gauss_markov, NoiseTerm::white_noise, gm.tau_c_s, 0.0});
+  return columns;
+}
+
+}  // namespace fit_detail
+
+using namespace fit_detail;
+
+namespace {
+
+/// The lower Cholesky factor of the row-major N×N correlation matrix CORRELATION; WHERE names
+/// the caller in errors. Neighbouring τ of a dense grid correlate to within rounding of 1: a
+/// ridge of 1e−12 … 1e−9 of the diagonal keeps the factor real.
+Eigen::MatrixXd correlation_cholesky(std::span<const double> correlation, std::size_t n,
+                                     const char* where) {
+  IMUNOISE_EXPECT(correlation.size() == n * n,
+                  std::string(where) + ": the correlation matrix has " +
+                      std::to_string(correlation.size()) + " entries for " + std::to_string(n) +
+                      " used points");
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      rho(correlation.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  const Eigen::MatrixXd identity =
+      Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  for (double ridge = 1e-12; ridge <= 1e-6; ridge *= 10.0) {
+    Eigen::LLT<Eigen::MatrixXd> llt(rho + ridge * identity);
+    if (llt.info() == Eigen::Success) return llt.matrixL();
+  }
+  IMUNOISE_CHECK(false, AnalysisError,
+                 std::string(where) + ": the correlation matrix is not positive definite");
+  return {};
+}
+
+FitResult refit_structure(std::span<const FitPoint> points, const FitResult& structure,
+                          const FitOptions& options, std::span<const double> used_correlation,
+                          bool full_result, const char* where) {
+  validate_options(options);
+  validate_points(points, where);
+  IMUNOISE_EXPECT(structure.used.size() >= 2,
+                  std::string(where) + ": the structure uses fewer than 2 points");
+  Data data = used_data(points, structure.used, where);
+  if (!used_correlation.empty()) {
+    data.correlation_factor = correlation_cholesky(used_correlation, data.size(), where);
+    data.weight_model.resize(static_cast<Eigen::Index>(data.size()));
+    for (std::size_t k = 0; k < data.size(); ++k)
+      data.weight_model(static_cast<Eigen::Index>(k)) =
+          model_variance(structure.coefficients, data.tau[k], structure.hadamard);
+  }
+  const bool hadamard = structure.hadamard;
+  std::vector<Column> columns = structure_columns(structure);
+  IMUNOISE_CHECK(!columns.empty(), AnalysisError,
+                 std::string(where) + ": the structure has no identified term");
+  refine_gauss_markov(data, columns, hadamard, options.weight_iterations,
+                      brackets_around(columns, kRefitBracket));
+  const Solution s = solve(data, columns, hadamard, options.weight_iterations, zero_offset(data));
+  FitResult r = make_result(points, data, columns, s, hadamard, effective_point_count(data),
+                            full_result ? structure.selection_note : "", full_result);
+  return r;
+}
+
+}  // namespace
+
+FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
+                            const FitOptions& options, std::span<const double> used_correlation) {
+  return refit_structure(points, structure, options, used_correlation, false, "refit_fixed_terms");
+}
+
+FitResult generalized_refit(std::span<const FitPoint> points, const FitResult& fit,
+                            const FitOptions& options, std::span<const double> used_correlation) {
+  IMUNOISE_EXPECT(!used_correlation.empty(), "generalized_refit: no correlation matrix");
+  return refit_structure(points, fit, options, used_correlation, true, "generalized_refit");
+}
+
+PerTerm<CoefficientInterval> least_squares_intervals(std::span<const FitPoint> points,
+                                                     const FitResult& fit, double confidence) {
+  PerTerm<CoefficientInterval> out{};
+  std::vector<NoiseTerm> active;
+  for (NoiseTerm term : kNoiseTerms) {
+    const TermFit& t = fit.terms[term];
+    if (t.identified && t.value > 0.0) active.push_back(term);
+  }
+  if (active.empty() || fit.used.empty()) return out;
+  const Data data = used_data(points, fit.used, "least_squares_intervals");
+  const auto p = static_cast<Eigen::Index>(active.size());
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(p, p);
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    const double model = model_variance(fit.coefficients, data.tau[k], fit.hadamard);
+    if (!(model > 0.0)) continue;
+    Eigen::VectorXd phi(p);
+    for (Eigen::Index i = 0; i < p; ++i) {
+      phi(i) = term_basis(active[static_cast<std::size_t>(i)], data.tau[k], fit.hadamard);
+    }
+    normal += data.nu[k] / (2.0 * model * model) * phi * phi.transpose();
+  }
+  const Eigen::MatrixXd cov = normal.completeOrthogonalDecomposition().pseudoInverse();
+  // Two-sided normal quantile: P(Z² ≤ z²) = confidence with Z² ~ χ²₁.
+  const double z = std::sqrt(chi_square_quantile(confidence, 1.0));
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const auto t = static_cast<std::size_t>(active[static_cast<std::size_t>(i)]);
+    const double c = fit.terms[t].value;
+    const double sd_c = std::sqrt(std::max(cov(i, i), 0.0)) / (2.0 * c);  // d(c²) = 2c·dc
+    out[t] = {std::max(0.0, c - z * sd_c), c + z * sd_c};
+  }
+  return out;
+}
+
+namespace {
+
+/// f = uᵀCu/uᵀu (at least 1) for the weighted basis PHI of a term, u made orthogonal to the
+/// columns the fit without it uses (coefficient > 0), with the weights √(ν/2)/m of its
+/// solution: the factor by which the correlation C of the estimates inflates the variance of
+/// the term's estimate over the independent-points value the deviance assumes.
+double direction_inflation(const Data& data, const std::vector<Column>& columns, bool hadamard,
+                           int weight_iterations, const Eigen::VectorXd& phi,
+                           std::span<const double> correlation) {
+  const auto n = static_cast<Eigen::Index>(data.size());
+  const Solution s = solve(data, columns, hadamard, weight_iterations, Eigen::VectorXd::Zero(n));
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    scale(k) = std::sqrt(0.5 * data.nu[i]) / floored(s.model(k), data.y[i]);
+  }
+  std::vector<Eigen::Index> active;
+  for (Eigen::Index j = 0; j < s.c.size(); ++j)
+    if (s.c(j) > 0.0) active.push_back(j);
+  Eigen::MatrixXd a(n, static_cast<Eigen::Index>(active.size()));
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index k = 0; k < n; ++k)
+      a(k, j) =
+          scale(k) * basis(columns[static_cast<std::size_t>(active[static_cast<std::size_t>(j)])],
+                           data.tau[static_cast<std::size_t>(k)], hadamard);
+  Eigen::VectorXd u = scale.cwiseProduct(phi);
+  if (a.cols() > 0) u -= a * a.colPivHouseholderQr().solve(u);
+  const double uu = u.squaredNorm();
+  if (!(uu > 0.0)) return 1.0;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> c(
+      correlation.data(), n, n);
+  const double f = u.dot(c * u) / uu;
+  return std::isfinite(f) ? std::max(f, 1.0) : 1.0;
+}
+
+}  // namespace
+
+double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fit, NoiseTerm term,
+                           double confidence, int weight_iterations,
+                           std::span<const double> used_correlation) {
+  if (fit.used.empty()) return std::numeric_limits<double>::infinity();
+  const Data data = used_data(points, fit.used, "profile_upper_bound");
+  std::vector<Column> columns = structure_columns(fit);
+  std::erase_if(columns, [term](const Column& c) {
+    return c.kind == ColumnKind::power_law && c.term == term;
+  });
+  const auto n = static_cast<Eigen::Index>(data.size());
+  Eigen::VectorXd phi(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    phi(k) = term_basis(term, data.tau[static_cast<std::size_t>(k)], fit.hadamard);
+  }
+  // D(c): the deviance of the best fit of the other terms with c²·φ held in the model.
+  const auto deviance_at = [&](double c) {
+    return solve(data, columns, fit.hadamard, weight_iterations, c * c * phi).deviance;
+  };
+  const double d0 = deviance_at(0.0);
+  double inflation = static_cast<double>(data.size()) / effective_point_count(data);
+  if (!used_correlation.empty()) {
+    IMUNOISE_EXPECT(used_correlation.size() == data.size() * data.size(),
+                    "profile_upper_bound: the correlation must be n_used x n_used");
+    inflation =
+        direction_inflation(data, columns, fit.hadamard, weight_iterations, phi, used_correlation);
+  }
+  const double target = chi_square_quantile(confidence, 1.0) * inflation;
+  double c_hi = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (phi(k) > 0.0) {
+      c_hi = std::max(c_hi, std::sqrt(100.0 * data.y[static_cast<std::size_t>(k)] / phi(k)));
+    }
+  }
+  if (!(c_hi > 0.0) || !(deviance_at(c_hi) - d0 > target)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double c_lo = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (c_lo + c_hi);
+    (deviance_at(mid) - d0 > target ? c_hi : c_lo) = mid;
+  }
+  return c_hi;
+}
+
+FitResult refit_with_term_held(std::span<const FitPoint> points, const FitResult& fit,
+                               NoiseTerm term, double held, int weight_iterations) {
+  IMUNOISE_EXPECT(
+      !fit.terms[term].identified && std::isfinite(held) && held >= 0.0 && fit.used.size() >= 2,
+      "refit_with_term_held: needs a dropped term, a finite value >= 0 and 2 used points");
+  const Data data = used_data(points, fit.used, "refit_with_term_held");
+  const std::vector<Column> columns = structure_columns(fit);
+  Eigen::VectorXd offset(static_cast<Eigen::Index>(data.size()));
+  for (std::size_t k = 0; k < data.size(); ++k)
+    offset(static_cast<Eigen::Index>(k)) =
+        held * held * term_basis(term, data.tau[k], fit.hadamard);
+  const Solution s = solve(data, columns, fit.hadamard, weight_iterations, offset);
+  FitResult r = make_result(points, data, columns, s, fit.hadamard, fit.effective_points, "",
+                            /*residuals=*/false);
+  coefficient(r.coefficients, term) = held;
+  return r;
+}
+
+}  // namespace imunoise::analysis
