@@ -64,6 +64,10 @@ struct SensorAxisNoise {
   /// How many of the first gm_terms stand for B (its multi-GM representation); the rest are
   /// fitted GM terms. Only the drift budget tells them apart (ins::DriftBudgetTerm).
   std::size_t bias_instability_terms = 0;
+  /// Q, angle (velocity) quantization [rad | m/s]: white noise of the integrated signal, no
+  /// error state (its position effect stays bounded); read only where the per-sample scatter
+  /// of the rate matters (pipeline::check_stationary: 2Q²/Δt² per sample, theory.md §4.1).
+  double quantization = 0.0;
 };
 
 /// x, y, z axes (body FRD) of the gyro and the accelerometer.

@@ -32,6 +32,7 @@ SensorAxisNoise axis_noise(const models::SensorAxisParameters& p, const models::
   n.bias_instability_terms = axis->multi_gm.size();
   for (const models::GaussMarkovEstimate& gm : axis->gauss_markov) n.gm_terms.push_back(gm.value);
   n.ramp = axis->terms[NoiseTerm::ramp].value;
+  n.quantization = axis->terms[NoiseTerm::quantization].value;
   return n;
 }
 

@@ -39,8 +39,10 @@ struct InsNoiseOptions {
 /// filter_rate_hz = MODEL.sample_rate_hz}) — the rate only bounds a quantization fold that is
 /// not used here. Axes are matched to x, y, z by their name suffix (_x, _y, _z), else in model
 /// order. Quantization, ramp, sinusoids and further GM terms are not carried (callers that
-/// need them note it). turn_on_bias_sigma and scale_factor_sigma stay 0: a stationary noise
-/// fit cannot see constants (AVAR is blind to them, theory.md §7.7), so they are the caller's.
+/// need them note it), except with options.model_terms_as_states: then the ramp, the GM terms
+/// and quantization (SensorAxisNoise::quantization, which gets no state) are. turn_on_bias_sigma
+/// and scale_factor_sigma stay 0: a stationary noise fit cannot see constants (AVAR is blind to
+/// them, theory.md §7.7), so they are the caller's.
 /// @throws InputError unless MODEL has exactly three gyro and three accel axes ("... needs
 ///   three gyro and three accel axes; the model has G and A"), when its sample_rate_hz is
 ///   not > 0, or as select_filter_parameters() (e.g. B without τ of the ADEV minimum).

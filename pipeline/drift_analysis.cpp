@@ -154,8 +154,12 @@ MotionCheck check_stationary(const ImuSeries& s, const ins::InsSensorNoise& nois
   for (int i = 0; i < 3; ++i) {
     const auto& g = noise.gyro[i];
     const auto& a = noise.accel[i];
-    sigma[i] = std::sqrt(g.white_noise * g.white_noise / dt + gm_variance(g));
-    sigma[3 + i] = std::sqrt(a.white_noise * a.white_noise / dt + gm_variance(a));
+    // Quantization Q of the integrated signal: a rate sample (e_{k+1} − e_k)/Δt of rounding
+    // errors of variance Q² has variance 2Q²/Δt² (an angle counter's gyro is dominated by it).
+    sigma[i] = std::sqrt(g.white_noise * g.white_noise / dt + gm_variance(g) +
+                         2.0 * g.quantization * g.quantization / (dt * dt));
+    sigma[3 + i] = std::sqrt(a.white_noise * a.white_noise / dt + gm_variance(a) +
+                             2.0 * a.quantization * a.quantization / (dt * dt));
   }
   std::vector<Eigen::Vector3d> mean_f(windows), mean_w(windows);
   std::array<double, 6> worst_ratio{};

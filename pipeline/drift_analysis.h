@@ -89,10 +89,10 @@ struct MotionCheck {
 };
 
 /// Stationarity from 1-s windows: the sample std of every channel at most 3× the model's
-/// per-sample σ (N/√Δt, plus the variance of the GM/B stand-in), the specific-force magnitude
-/// within 0.5 m/s² of its median, its direction within 2° of the median direction, and the
-/// window-mean rate within 0.5 deg/s (plus 10 window σ) of its median. A recording that moves
-/// fails at least one of them; a MEMS at rest passes them all with margin.
+/// per-sample σ (N/√Δt, plus the variance of the GM/B stand-in and 2Q²/Δt² of quantization), the
+/// specific-force magnitude within 0.5 m/s² of its median, its direction within 2° of the median
+/// direction, and the window-mean rate within 0.5 deg/s (plus 10 window σ) of its median. A
+/// recording that moves fails at least one of them; a MEMS at rest passes them all with margin.
 MotionCheck check_stationary(const ImuSeries& series, const ins::InsSensorNoise& noise);
 
 /// Consistency of actual and predicted drift at one time (theory.md §7.7).

@@ -183,6 +183,36 @@ TEST(DriftAnalysis, MotionIsDetected) {
   EXPECT_NE(check.reason.find("accelerometer noise"), std::string::npos) << check.reason;
 }
 
+TEST(DriftAnalysis, AnAngleCounterGyroAtRestIsStationaryWhenTheModelHasItsQuantization) {
+  // A tactical gyro read out as an angle counter: the angle (true rate·t plus white rate noise
+  // N, integrated) rounded to a step Δ, the rate sample the difference of two counts over Δt.
+  // Its per-sample scatter is that of the rounding, 2Q²/Δt² with Q = Δ/√12, far above N²/Δt;
+  // a check that leaves Q out calls this recording of an IMU at rest "not stationary" (seen on
+  // the tactical class of the validation battery: 3.008× the model's σ).
+  auto noise = noise_model();
+  auto rec = simulate(noise, 600.0, 4);
+  const double dt = 1.0 / kRate;
+  const double step = 2e-6;  // Δ [rad]: Q = 5.8e-7 rad, √2·Q/Δt = 1.6e-5 rad/s against N/√Δt = 9e-5
+  const double large_step = 4e-5;  // Q = 1.15e-5 rad: √2·Q/Δt = 3.3e-4 rad/s, 3.6× N/√Δt
+  for (int i = 0; i < 3; ++i) {
+    double angle = 0.0, counted = 0.0;
+    for (double& rate : rec.data[static_cast<std::size_t>(i)]) {
+      angle += rate * dt;
+      const double count =
+          std::round(angle / (i == 0 ? large_step : step)) * (i == 0 ? large_step : step);
+      rate = (count - counted) / dt;
+      counted = count;
+    }
+  }
+  const MotionCheck without_q = check_stationary(rec.series(), noise);
+  EXPECT_FALSE(without_q.stationary);
+  EXPECT_GT(without_q.max_gyro_std_ratio, 3.0);
+  noise.gyro[0].quantization = large_step / std::sqrt(12.0);
+  noise.gyro[1].quantization = noise.gyro[2].quantization = step / std::sqrt(12.0);
+  const MotionCheck check = check_stationary(rec.series(), noise);
+  EXPECT_TRUE(check.stationary) << check.reason;
+}
+
 TEST(DriftAnalysis, ClearErrors) {
   const auto noise = noise_model();
   const auto rec = simulate(noise, 200.0, 1);
