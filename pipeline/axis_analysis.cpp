@@ -378,9 +378,9 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   out.fit = fit_with_model_noise_types(out.oadev, fit_options, points);
   std::vector<double> gls_correlation;
   if (options.generalized_least_squares) {
-    // The selected structure re-estimated with the correlation across τ in the weights, the
-    // correlation re-derived from each new model (two passes: the second moves the
-    // coefficients by far less than their intervals).
+    // The selected structure re-estimated with the correlation across τ in the weights: the
+    // first pass weights from the selected model, the second from the first GLS model; the
+    // interval draws then use the final model's correlation.
     for (int pass = 0; pass < 2; ++pass) {
       gls_correlation = used_point_correlation(out.fit, m_oadev, tau0_s, total_samples);
       out.fit = analysis::generalized_refit(points, out.fit, fit_options, gls_correlation);
