@@ -150,8 +150,10 @@ FitResult fit_noise_model(std::span<const FitPoint> points, const FitOptions& op
 /// feasible generalized least squares: Cov = DρD with D = diag(m_k·√(2/ν_k)), m_k STRUCTURE's
 /// model held (not re-weighted per solve), i.e. the covariance across τ (theory.md §3.5) of
 /// the estimates under that model as the weighting matrix.
-/// @throws AnalysisError when a used point is unusable, the structure has no term or the
-///   correlation is not positive definite; ContractViolation when a used index is out of
+/// The correlation's Cholesky factor is analysis::correlation_factor's (a ridge, else the nearest
+/// positive definite matrix).
+/// @throws AnalysisError when a used point is unusable or the structure has no term;
+///   ContractViolation when a used index is out of
 ///   range, fewer than 2 points are used or USED_CORRELATION has the wrong size.
 FitResult refit_fixed_terms(std::span<const FitPoint> points, const FitResult& structure,
                             const FitOptions& options,

@@ -12,6 +12,7 @@
 #include "analysis/noise_fit.h"
 #include "analysis/noise_fit_internal.h"
 #include "analysis/noise_terms.h"
+#include "analysis/variance_covariance.h"
 #include "common/errors.h"
 
 namespace imunoise::analysis {
@@ -58,28 +59,6 @@ using namespace fit_detail;
 
 namespace {
 
-/// The lower Cholesky factor of the row-major N×N correlation matrix CORRELATION; WHERE names
-/// the caller in errors. Neighbouring τ of a dense grid correlate to within rounding of 1: a
-/// ridge of 1e−12 … 1e−9 of the diagonal keeps the factor real.
-Eigen::MatrixXd correlation_cholesky(std::span<const double> correlation, std::size_t n,
-                                     const char* where) {
-  IMUNOISE_EXPECT(correlation.size() == n * n,
-                  std::string(where) + ": the correlation matrix has " +
-                      std::to_string(correlation.size()) + " entries for " + std::to_string(n) +
-                      " used points");
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
-      rho(correlation.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  const Eigen::MatrixXd identity =
-      Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  for (double ridge = 1e-12; ridge <= 1e-6; ridge *= 10.0) {
-    Eigen::LLT<Eigen::MatrixXd> llt(rho + ridge * identity);
-    if (llt.info() == Eigen::Success) return llt.matrixL();
-  }
-  IMUNOISE_CHECK(false, AnalysisError,
-                 std::string(where) + ": the correlation matrix is not positive definite");
-  return {};
-}
-
 FitResult refit_structure(std::span<const FitPoint> points, const FitResult& structure,
                           const FitOptions& options, std::span<const double> used_correlation,
                           bool full_result, const char* where) {
@@ -89,7 +68,14 @@ FitResult refit_structure(std::span<const FitPoint> points, const FitResult& str
                   std::string(where) + ": the structure uses fewer than 2 points");
   Data data = used_data(points, structure.used, where);
   if (!used_correlation.empty()) {
-    data.correlation_factor = correlation_cholesky(used_correlation, data.size(), where);
+    const auto n = static_cast<Eigen::Index>(data.size());
+    IMUNOISE_EXPECT(used_correlation.size() == data.size() * data.size(),
+                    std::string(where) + ": the correlation matrix has " +
+                        std::to_string(used_correlation.size()) + " entries for " +
+                        std::to_string(data.size()) + " used points");
+    data.correlation_factor = correlation_factor(
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            used_correlation.data(), n, n));
     data.weight_model.resize(static_cast<Eigen::Index>(data.size()));
     for (std::size_t k = 0; k < data.size(); ++k)
       data.weight_model(static_cast<Eigen::Index>(k)) =
@@ -102,9 +88,8 @@ FitResult refit_structure(std::span<const FitPoint> points, const FitResult& str
   refine_gauss_markov(data, columns, hadamard, options.weight_iterations,
                       brackets_around(columns, kRefitBracket));
   const Solution s = solve(data, columns, hadamard, options.weight_iterations, zero_offset(data));
-  FitResult r = make_result(points, data, columns, s, hadamard, effective_point_count(data),
-                            full_result ? structure.selection_note : "", full_result);
-  return r;
+  return make_result(points, data, columns, s, hadamard, effective_point_count(data),
+                     full_result ? structure.selection_note : "", full_result);
 }
 
 }  // namespace

@@ -42,6 +42,33 @@ struct VarianceCovariance {
 /// with the noise spectrum at their frequency (theory.md §4.1 S_Ω, without the sampling sinc²).
 /// @throws ContractViolation when τ0 ≤ 0, an m is < 1 or leaves fewer than 1 term, or MODEL
 ///   has a negative coefficient.
+/// The correlation matrix of MOMENTS.covariance; a point without variance under the model (a
+/// deterministic term alone) is uncorrelated, with a unit diagonal.
+Eigen::MatrixXd correlation_matrix(const VarianceCovariance& moments);
+
+/// The lower Cholesky factor of the correlation matrix CORRELATION. Neighbouring τ of a dense
+/// grid correlate to within rounding of 1: a ridge of up to 1e−9 of the diagonal keeps the
+/// factor real (invisible in any draw or fit); should rounding still leave it indefinite, the
+/// factor of the nearest positive definite matrix (eigenvalues clipped, unit diagonal
+/// restored).
+Eigen::MatrixXd correlation_factor(const Eigen::MatrixXd& correlation);
+
+/// The estimates of MOMENTS drawn from their joint distribution: each σ̂²_i = E_i·χ²_ν/ν (ν the
+/// EDF under the model; exact quantiles below ν = 50, Wilson–Hilferty above) at the normal
+/// score z = Lu, L the correlation_factor and u independent standard normals — a Gaussian
+/// copula with the model's correlation across τ. The interval draws of pipeline/bootstrap.
+class VarianceDraw {
+ public:
+  explicit VarianceDraw(VarianceCovariance moments);
+  std::size_t size() const { return moments_.expected.size(); }
+  /// One draw into AVAR (size()) from NORMALS (size() independent standard normals).
+  void draw(std::span<const double> normals, std::span<double> avar) const;
+
+ private:
+  VarianceCovariance moments_;
+  Eigen::MatrixXd factor_;
+};
+
 VarianceCovariance overlapping_variance_covariance(const NoiseCoefficients& model, double tau0_s,
                                                    std::int64_t n_rate_samples,
                                                    std::span<const std::int64_t> m_list,

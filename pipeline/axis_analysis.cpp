@@ -229,19 +229,12 @@ std::vector<double> used_point_correlation(const analysis::FitResult& fit,
   if (used_m.empty()) return used_correlation;
   const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
       fit.coefficients, tau0_s, total_samples, used_m, fit.hadamard);
+  const Eigen::MatrixXd rho = analysis::correlation_matrix(vc);
   const std::size_t n = used_m.size();
-  used_correlation.assign(n * n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) {
-      const double vi = vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
-      const double vj = vc.covariance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
-      used_correlation[i * n + j] =
-          vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
-              ? vc.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
-                    std::sqrt(vi * vj)
-              : (i == j ? 1.0 : 0.0);
-    }
-  }
+  used_correlation.resize(n * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      used_correlation[i * n + j] = rho(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
   return used_correlation;
 }
 
@@ -249,10 +242,15 @@ PerTerm<double> selection_upper_bounds(std::span<const analysis::FitPoint> point
                                        const analysis::FitResult& fit,
                                        std::span<const std::int64_t> m_list, double tau0_s,
                                        std::int64_t total_samples, double confidence,
-                                       int weight_iterations) {
+                                       int weight_iterations,
+                                       std::span<const double> given_correlation) {
   // The correlation of the variance estimates at the fitted points under the fitted model.
-  const std::vector<double> used_correlation =
-      used_point_correlation(fit, m_list, tau0_s, total_samples);
+  std::vector<double> computed;
+  std::span<const double> used_correlation = given_correlation;
+  if (used_correlation.empty()) {
+    computed = used_point_correlation(fit, m_list, tau0_s, total_samples);
+    used_correlation = computed;
+  }
   PerTerm<double> upper_bounds{};
   for (NoiseTerm term : kNoiseTerms) {
     upper_bounds[term] = fit.terms[term].identified
@@ -477,7 +475,7 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // conditional on K = 0 when the data allow K up to its bound.
   const PerTerm<double> upper_bounds =
       selection_upper_bounds(points, out.fit, m_oadev, tau0_s, total_samples, options.confidence,
-                             fit_options.weight_iterations);
+                             fit_options.weight_iterations, gls_correlation);
   const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
       points, out.fit, intervals, upper_bounds, fit_options.weight_iterations);
   for (NoiseTerm term : kNoiseTerms) {

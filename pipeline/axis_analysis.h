@@ -152,11 +152,14 @@ std::vector<double> used_point_correlation(const analysis::FitResult& fit,
 /// under FIT's model (analysis/variance_covariance.h). M_LIST[k] is the averaging factor of
 /// POINTS[k]; the record has TOTAL_SAMPLES samples at period TAU0_S. Shared by analyze_axis
 /// and the recording plan (pipeline/recording_plan.h), so both widen the same way.
+/// USED_CORRELATION: that correlation when the caller has it (used_point_correlation() of FIT),
+/// empty: computed here.
 PerTerm<double> selection_upper_bounds(std::span<const analysis::FitPoint> points,
                                        const analysis::FitResult& fit,
                                        std::span<const std::int64_t> m_list, double tau0_s,
                                        std::int64_t total_samples, double confidence,
-                                       int weight_iterations);
+                                       int weight_iterations,
+                                       std::span<const double> used_correlation = {});
 
 /// The first τ index not affected by a sensor low-pass: leading points whose σ²·τ is below
 /// 0.8× that of the next point (the curve bends under the N/√τ line), looking only at

@@ -1,7 +1,5 @@
 #include "pipeline/bootstrap.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -27,83 +25,6 @@ std::uint64_t replicate_seed(std::uint64_t seed, int replicate) {
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
   return z ^ (z >> 31);
 }
-
-/// The χ²_ν/ν variate whose normal score is Z: its exact quantile at Φ(Z) (tails from erfc so
-/// neither loses digits) for ν < 50; above, the Wilson–Hilferty cube (1 − 2/9ν + Z·√(2/9ν))³,
-/// within 1e−4 relative of the exact quantile for |Z| ≤ 4 there and a few hundred times
-/// cheaper (the exact one iterates a continued fraction of ~8.5·√(ν/2) terms; the draws of a
-/// long record have ν up to ~10⁶ at short τ).
-double chi_square_over_dof(double z, double nu) {
-  if (nu >= 50.0) {
-    const double c = 2.0 / (9.0 * nu);
-    const double w = std::max(0.0, 1.0 - c + z * std::sqrt(c));
-    return w * w * w;
-  }
-  const double tail = 0.5 * std::erfc(std::fabs(z) / std::sqrt(2.0));
-  return (z <= 0.0 ? analysis::chi_square_quantile(tail, nu)
-                   : analysis::chi_square_upper_quantile(tail, nu)) /
-         nu;
-}
-
-/// The joint distribution of the OAVAR estimates at USED_M under MODEL, ready to draw from:
-/// the expectations, the EDF and the Cholesky factor of the correlation matrix.
-class VarianceDraw {
- public:
-  VarianceDraw(const NoiseCoefficients& model, double tau0_s, std::int64_t n_samples,
-               std::span<const std::int64_t> used_m)
-      : moments_(analysis::overlapping_variance_covariance(model, tau0_s, n_samples, used_m)) {
-    const Eigen::Index n = moments_.covariance.rows();
-    Eigen::MatrixXd correlation(n, n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      for (Eigen::Index j = 0; j < n; ++j) {
-        // A point with no variance under the model (a deterministic term alone) is drawn at
-        // its expectation, uncorrelated.
-        const double vi = moments_.covariance(i, i), vj = moments_.covariance(j, j);
-        correlation(i, j) = vi > 0.0 && vj > 0.0 && std::isfinite(vi * vj)
-                                ? moments_.covariance(i, j) / std::sqrt(vi * vj)
-                                : (i == j ? 1.0 : 0.0);
-      }
-    }
-    // Neighbouring τ of a dense grid correlate to within rounding of 1: a little ridge keeps
-    // the factor real (1e−12 of the diagonal changes no draw visibly). Should rounding still
-    // leave it indefinite, the nearest positive definite matrix (eigenvalues clipped, unit
-    // diagonal restored) is drawn from, rather than the analysis failing.
-    for (double ridge = 0.0; ridge <= 1e-9; ridge = ridge == 0.0 ? 1e-12 : ridge * 10.0) {
-      Eigen::LLT<Eigen::MatrixXd> llt(correlation + ridge * Eigen::MatrixXd::Identity(n, n));
-      if (llt.info() == Eigen::Success) {
-        factor_ = llt.matrixL();
-        return;
-      }
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(correlation);
-    const double floor = 1e-10 * std::max(1.0, eigen.eigenvalues().maxCoeff());
-    Eigen::MatrixXd clipped = eigen.eigenvectors() *
-                              eigen.eigenvalues().cwiseMax(floor).asDiagonal() *
-                              eigen.eigenvectors().transpose();
-    const Eigen::VectorXd scale = clipped.diagonal().cwiseSqrt().cwiseInverse();
-    clipped = scale.asDiagonal() * clipped * scale.asDiagonal();
-    factor_ =
-        Eigen::LLT<Eigen::MatrixXd>(clipped + floor * Eigen::MatrixXd::Identity(n, n)).matrixL();
-  }
-
-  /// One draw of the OAVAR estimates into AVAR (size of USED_M), from the normals of NORMAL.
-  void draw(models::StandardNormal& normal, std::span<double> avar) const {
-    const Eigen::Index n = factor_.rows();
-    Eigen::VectorXd u(n);
-    for (Eigen::Index i = 0; i < n; ++i) u(i) = normal();
-    const Eigen::VectorXd z = factor_.triangularView<Eigen::Lower>() * u;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double nu = moments_.edf[static_cast<std::size_t>(i)];
-      // EDF 0: no variance under the model (analysis::VarianceCovariance), the expectation.
-      avar[static_cast<std::size_t>(i)] = moments_.expected[static_cast<std::size_t>(i)] *
-                                          (nu > 0.0 ? chi_square_over_dof(z(i), nu) : 1.0);
-    }
-  }
-
- private:
-  analysis::VarianceCovariance moments_;
-  Eigen::MatrixXd factor_;
-};
 
 }  // namespace
 
@@ -164,14 +85,17 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
   for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
 
   const bool simulate = options.source == ReplicateSource::simulated_record;
-  std::optional<VarianceDraw> variance_draw;
-  if (!simulate) variance_draw.emplace(fit.coefficients, tau0_s, n_samples, used_m);
+  std::optional<analysis::VarianceDraw> variance_draw;
+  if (!simulate)
+    variance_draw.emplace(
+        analysis::overlapping_variance_covariance(fit.coefficients, tau0_s, n_samples, used_m));
 
   // Per worker: one array the record's size, the simulated rate turned into phase in place,
   // so a worker holds 8 bytes per sample (a 24 h record at 1 kHz: 0.7 GB), not 16; and the
   // fit points the replicate's AVAR is written into.
   struct Scratch {
     std::vector<double> samples;
+    std::vector<double> normals;  ///< the standard normals of one variance draw
     std::vector<analysis::FitPoint> points;
   };
   const auto make_scratch = [&] {
@@ -186,7 +110,9 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
     if (!simulate) {
       models::StandardNormal normal{models::Xoshiro256PlusPlus(seed)};
       scratch.samples.resize(used_m.size());
-      variance_draw->draw(normal, scratch.samples);
+      scratch.normals.resize(used_m.size());
+      for (double& u : scratch.normals) u = normal();
+      variance_draw->draw(scratch.normals, scratch.samples);
       for (std::size_t i = 0; i < fit.used.size(); ++i) {
         scratch.points[fit.used[i]].avar = scratch.samples[i];
       }

@@ -150,16 +150,16 @@ MotionCheck check_stationary(const ImuSeries& s, const ins::InsSensorNoise& nois
       std::max<std::size_t>(10, static_cast<std::size_t>(std::lround(1.0 / dt)));
   const std::size_t windows = s.size() / window;
   if (windows < 3) return out;  // too short to judge; the caller's length checks apply
+  // Quantization Q of the integrated signal: a rate sample (e_{k+1} − e_k)/Δt of rounding
+  // errors of variance Q² has variance 2Q²/Δt² (an angle counter's gyro is dominated by it).
+  const auto per_sample_sigma = [dt](const ins::SensorAxisNoise& axis) {
+    return std::sqrt(axis.white_noise * axis.white_noise / dt + gm_variance(axis) +
+                     2.0 * axis.quantization * axis.quantization / (dt * dt));
+  };
   std::array<double, 6> sigma{};
   for (int i = 0; i < 3; ++i) {
-    const auto& g = noise.gyro[i];
-    const auto& a = noise.accel[i];
-    // Quantization Q of the integrated signal: a rate sample (e_{k+1} − e_k)/Δt of rounding
-    // errors of variance Q² has variance 2Q²/Δt² (an angle counter's gyro is dominated by it).
-    sigma[i] = std::sqrt(g.white_noise * g.white_noise / dt + gm_variance(g) +
-                         2.0 * g.quantization * g.quantization / (dt * dt));
-    sigma[3 + i] = std::sqrt(a.white_noise * a.white_noise / dt + gm_variance(a) +
-                             2.0 * a.quantization * a.quantization / (dt * dt));
+    sigma[i] = per_sample_sigma(noise.gyro[i]);
+    sigma[3 + i] = per_sample_sigma(noise.accel[i]);
   }
   std::vector<Eigen::Vector3d> mean_f(windows), mean_w(windows);
   std::array<double, 6> worst_ratio{};

@@ -17,15 +17,19 @@
 namespace imunoise::test {
 namespace {
 
-TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
-  const auto dir = make_temp_dir("analyze_cli");
-  const auto model_file = dir / "truth.yaml";
-  // Gyro: N = 0.4 deg/√h, K = 84.24 deg/h/√h (theory.md §8.2); accel: VRW only.
-  write_text(model_file,
+/// Gyro: N = 0.4 deg/√h, K = 84.24 deg/h/√h (theory.md §8.2); accel: VRW only; at 50 Hz.
+void write_white_and_walk_model(const std::filesystem::path& file) {
+  write_text(file,
              "sample_rate_hz: 50\n"
              "gyro:\n  arw_rad_per_sqrt_s: 1.16355e-4\n  rrw_rad_per_s_sqrt_s: 6.80678e-6\n"
              "accel:\n  vrw_m_per_s_sqrt_s: 1.471e-3\n"
              "  z: {specific_force_m_per_s2: -9.80665}\n");
+}
+
+TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
+  const auto dir = make_temp_dir("analyze_cli");
+  const auto model_file = dir / "truth.yaml";
+  write_white_and_walk_model(model_file);
   const auto rec = dir / "rec.csv";
   ASSERT_EQ(
       run_imunoise("simulate " + model_file.string() + " --duration 1h --seed 3 -o " + rec.string())
@@ -124,11 +128,7 @@ TEST(AnalyzeCli, GeneralizedLeastSquaresEstimatorIsNamedAndKeepsTheTruthInside) 
   // estimate's method says so, and N stays inside its interval. A wrong name is refused.
   const auto dir = make_temp_dir("analyze_gls");
   const auto model_file = dir / "truth.yaml";
-  write_text(model_file,
-             "sample_rate_hz: 50\n"
-             "gyro:\n  arw_rad_per_sqrt_s: 1.16355e-4\n  rrw_rad_per_s_sqrt_s: 6.80678e-6\n"
-             "accel:\n  vrw_m_per_s_sqrt_s: 1.471e-3\n"
-             "  z: {specific_force_m_per_s2: -9.80665}\n");
+  write_white_and_walk_model(model_file);
   const auto rec = dir / "rec.csv";
   ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 30min --seed 5 -o " +
                          rec.string())

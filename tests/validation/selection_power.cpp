@@ -1,14 +1,15 @@
 /// @file
 /// @brief How often the noise fit identifies a term, on OAVAR vectors drawn from their joint
 /// distribution under a known model (analysis/variance_covariance.h: expectations, EDF and the
-/// correlation across τ; χ² marginals joined by a Gaussian copula, as the interval draws do):
+/// correlation across τ; analysis::VarianceDraw, the interval draws' χ² marginals joined by a
+/// Gaussian copula):
 /// the power of the model selection where the term is present and its false rate where it is
 /// not, per selection threshold κ and minimum EDF. A study of the selection's statistics with
 /// the record's own sampling distribution, not a validation of the estimator (that is the
 /// battery's, on independent data: docs/validation.md).
 ///
 ///   selection_power [--draws 400] [--seed 1]
-#include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,7 +18,6 @@
 #include <string>
 #include <vector>
 
-#include "analysis/chi_square.h"
 #include "analysis/noise_fit.h"
 #include "analysis/tau_grid.h"
 #include "analysis/variance_covariance.h"
@@ -34,16 +34,6 @@ struct Case {
   double hours;
 };
 
-double chi2_over_nu(double z, double nu) {
-  const double p = 0.5 * std::erfc(-z / std::sqrt(2.0));
-  if (nu >= 50.0) {
-    const double c = 2.0 / (9.0 * nu);
-    const double w = std::max(0.0, 1.0 - c + z * std::sqrt(c));
-    return w * w * w;
-  }
-  return (z <= 0 ? chi_square_quantile(p, nu) : chi_square_upper_quantile(1 - p, nu)) / nu;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,29 +43,24 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--draws")) draws = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--seed")) seed = std::strtoull(argv[i + 1], nullptr, 10);
   }
-  // The battery's consumer gyro_x (1 h at 1 kHz) and industrial gyro_x (4 h at 400 Hz), with K
-  // and without it (the null).
+  // The battery's consumer gyro_x (1 h at 1 kHz) and industrial gyro_x (4 h at 400 Hz), each
+  // with K and without it (the null).
   std::vector<Case> cases;
-  {
-    Case c{"consumer gyro_x", {}, 1000.0, 1.0};
-    c.truth.white_noise = 1.745e-4;
-    c.truth.bias_instability = 4.848e-5;
-    c.truth.random_walk = 4.04e-6;
+  const auto with_and_without_k = [&cases](const char* name, const char* null_name, double n,
+                                           double b, double k, double rate_hz, double hours) {
+    Case c{name, {}, rate_hz, hours};
+    c.truth.white_noise = n;
+    c.truth.bias_instability = b;
+    c.truth.random_walk = k;
     cases.push_back(c);
-    c.name = "consumer gyro_x, no K";
+    c.name = null_name;
     c.truth.random_walk = 0.0;
     cases.push_back(c);
-  }
-  {
-    Case c{"industrial gyro_x", {}, 400.0, 4.0};
-    c.truth.white_noise = 4.363e-5;
-    c.truth.bias_instability = 9.696e-6;
-    c.truth.random_walk = 4.04e-7;
-    cases.push_back(c);
-    c.name = "industrial gyro_x, no K";
-    c.truth.random_walk = 0.0;
-    cases.push_back(c);
-  }
+  };
+  with_and_without_k("consumer gyro_x", "consumer gyro_x, no K", 1.745e-4, 4.848e-5, 4.04e-6,
+                     1000.0, 1.0);
+  with_and_without_k("industrial gyro_x", "industrial gyro_x, no K", 4.363e-5, 9.696e-6, 4.04e-7,
+                     400.0, 4.0);
   const double kappas[] = {12.0, 9.0, 6.6, 4.0};
   const double min_edfs[] = {4.0, 2.0, 1.0};
   for (const Case& c : cases) {
@@ -85,12 +70,7 @@ int main(int argc, char** argv) {
         averaging_factors(parse_tau_grid("log:10"), DeviationType::oadev, n + 1);
     const VarianceCovariance vc = overlapping_variance_covariance(c.truth, tau0, n, m);
     const auto k = static_cast<Eigen::Index>(m.size());
-    Eigen::MatrixXd rho(k, k);
-    for (Eigen::Index i = 0; i < k; ++i)
-      for (Eigen::Index j = 0; j < k; ++j)
-        rho(i, j) = vc.covariance(i, j) / std::sqrt(vc.covariance(i, i) * vc.covariance(j, j));
-    Eigen::LLT<Eigen::MatrixXd> llt(rho + 1e-10 * Eigen::MatrixXd::Identity(k, k));
-    const Eigen::MatrixXd L = llt.matrixL();
+    const VarianceDraw draw(vc);
     std::printf("%s: %lld points, tau %.3g..%.3g s, EDF at the last 6:", c.name,
                 static_cast<long long>(k), m.front() * tau0, m.back() * tau0);
     for (Eigen::Index i = k - 6; i < k; ++i) std::printf(" %.2f@%.0fs", vc.edf[i], m[i] * tau0);
@@ -100,14 +80,13 @@ int main(int argc, char** argv) {
         std::mt19937_64 rng(seed);
         std::normal_distribution<double> normal;
         int k_kept = 0, b_kept = 0, r_kept = 0, q_kept = 0;
+        std::vector<double> u(m.size()), y(m.size());
         std::vector<double> k_err;
         for (int r = 0; r < draws; ++r) {
-          Eigen::VectorXd u(k);
-          for (Eigen::Index i = 0; i < k; ++i) u(i) = normal(rng);
-          const Eigen::VectorXd z = L * u;
+          for (double& x : u) x = normal(rng);
+          draw.draw(u, y);
           std::vector<FitPoint> pts;
-          for (Eigen::Index i = 0; i < k; ++i)
-            pts.push_back({m[i] * tau0, vc.expected[i] * chi2_over_nu(z(i), vc.edf[i]), vc.edf[i]});
+          for (Eigen::Index i = 0; i < k; ++i) pts.push_back({m[i] * tau0, y[i], vc.edf[i]});
           FitOptions o;
           o.gauss_markov = GaussMarkovMode::off;
           o.selection_threshold = kappa;
