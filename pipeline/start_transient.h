@@ -1,10 +1,10 @@
 /// @file
 /// @brief Detection of a warm-up (thermal start-up transient) at the start of a recording, its
 /// amplitude and time constant, and how much of the start to trim. Pure computation on the
-/// rate samples of the channels of one recording; model-free: the scatter it compares against
-/// is the data's own at the same averaging time (theory.md §2: the AVAR is half the expected
-/// squared difference of adjacent means, at any position of a record with stationary
-/// increments).
+/// rate samples of the channels of one recording. The scatter it compares against is that of a
+/// power-law model (N, B, K, R) fitted to the last three quarters of the same channel (theory.md
+/// §2: the variance of a difference of adjacent means is twice the AVAR, at any position of a
+/// record with stationary increments).
 #pragma once
 
 #include <cstddef>
@@ -17,12 +17,12 @@ namespace imunoise::pipeline {
 /// One channel's part of the scan.
 struct StartTransientChannel {
   std::string name;
-  /// (mean of the first segment − mean of the second) / the scatter of that difference in the
-  /// last three quarters of the record, at the scale that gave the recording's statistic.
+  /// (mean of the first segment − mean of the second) / the standard deviation of that
+  /// difference under the reference model, at the segment that gave the recording's statistic.
   double z = 0.0;
   double amplitude = 0.0;  ///< fitted transient at t = 0, A in A·e^(−t/τ) [channel unit]
-  /// Model-free ADEV of the channel at the averaging time of the fitted τ [channel unit]
-  /// (from the last three quarters of the record).
+  /// ADEV of the channel's reference model at the fitted τ [channel unit] (the model is fitted
+  /// to the last three quarters of the record).
   double adev_at_tau = 0.0;
 };
 
@@ -30,7 +30,7 @@ struct StartTransientChannel {
 struct StartTransient {
   bool scanned = false;   ///< false: the record is too short (fewer than kMinSamples)
   bool detected = false;  ///< statistic > threshold
-  /// max over the segment lengths T/16, T/32, T/64 of Σ_channels z², and its threshold for the
+  /// max over the segment lengths T/8, T/16, T/32, T/64 of Σ_channels z², and its threshold for the
   /// number of channels (start_transient_threshold).
   double statistic = 0.0;
   double threshold = 0.0;

@@ -38,7 +38,8 @@ StartTransient scan(const std::vector<std::vector<double>>& channels, double tau
 }
 
 TEST(StartTransient, FalseAlarmsOnStationaryNoiseAtMostOnePercentPerRecording) {
-  // Seeds other than those of the threshold's calibration (start_transient.cpp). 300
+  // Seeds other than those of the threshold's calibration (tests/validation/
+  // start_transient_calibration). 300
   // six-channel recordings per colour: at the nominal 0.5 % the count is Binomial(300, 0.005),
   // mean 1.5, P(count ≥ 8) = 1.6e-4; a true rate of 3 % (mean 9) passes with P(≤ 7) = 0.32,
   // so the limit of 7 tells ≤ 1 % from several %.
@@ -84,6 +85,30 @@ TEST(StartTransient, FindsAnExponentialWithItsAmplitudeTimeConstantAndTrim) {
   const double trim = s.time_constant_s * std::log(0.3 / adev);
   EXPECT_NEAR(s.trim_s, trim, 0.5 * s.time_constant_s);
   EXPECT_FALSE(s.trim_capped);
+}
+
+TEST(StartTransient, DetectsAWarmUpAtThePowerOfItsModelScaledContrast) {
+  // Six white channels (σ = 1 per sample, n = 8192) with a·e^(−t/τ), τ = n/8 samples: the
+  // adjacent-mean difference over T/8 is a·(1 − e^(−1))² = 0.3996·a, its standard deviation
+  // √(2/(n/8)) = 0.0442, so a = 0.387 puts each channel's z at 3.5 and Σ z² at the T/8 segment
+  // alone is noncentral χ²₆ with λ = 73.5 (mean 79.5, sd 17.5): P(> 35, the threshold) = 0.995
+  // with the model's scatter known. Its fit from the last three quarters adds a few % to the
+  // spread; ≥ 95 of 100 leaves room for that (expected ≥ 99) and fails for a power of 0.9 with
+  // P = 0.06.
+  const std::size_t n = 8192;
+  std::mt19937_64 rng(20261203);
+  int detected = 0;
+  for (int r = 0; r < 100; ++r) {
+    auto channels = stationary(6, n, false, rng);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const double a = (c % 2 == 0 ? 1.0 : -1.0) * 0.387;
+      for (std::size_t i = 0; i < n; ++i) {
+        channels[c][i] += a * std::exp(-static_cast<double>(i) / (n / 8.0));
+      }
+    }
+    detected += scan(channels).detected ? 1 : 0;
+  }
+  EXPECT_GE(detected, 95);
 }
 
 TEST(StartTransient, ShortRecordsAreNotScanned) {
