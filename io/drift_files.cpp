@@ -376,6 +376,8 @@ json consistency_json(const std::vector<pipeline::DriftConsistency>& consistency
               {"mean_nees", c.mean_nees},
               {"mean_nees_band_95", {c.nees_band_low, c.nees_band_high}},
               {"nees_inside_band", c.nees_inside},
+              {"mean_nees_joint_band_95", {c.nees_joint_band_low, c.nees_joint_band_high}},
+              {"nees_inside_joint_band", c.nees_inside_joint_band},
               {"coverage_1_2_3_sigma", c.coverage},
               {"expected_coverage_1_2_3_sigma", c.expected_coverage},
               {"rms_ratio", c.rms_ratio},
@@ -455,6 +457,10 @@ std::vector<pipeline::DriftConsistency> read_consistency(const JsonReader& paren
     d.nees_band_low = band[0];
     d.nees_band_high = band[1];
     d.nees_inside = c.boolean("nees_inside_band");
+    const auto joint = c.numbers<2>("mean_nees_joint_band_95");
+    d.nees_joint_band_low = joint[0];
+    d.nees_joint_band_high = joint[1];
+    d.nees_inside_joint_band = c.boolean("nees_inside_joint_band");
     d.coverage = c.numbers<3>("coverage_1_2_3_sigma");
     d.expected_coverage = c.numbers<3>("expected_coverage_1_2_3_sigma");
     d.rms_ratio = c.number("rms_ratio");

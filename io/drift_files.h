@@ -77,6 +77,7 @@ pipeline::DriftBudget read_drift_budget_csv(const std::string& path);
 /// max_tilt_change_deg, max_rotation_deg_per_s}, "consistency" (one object per report time: time_s,
 /// predicted_north_sigma_m, predicted_east_sigma_m, predicted_horizontal_drms_m,
 /// actual_rms_horizontal_error_m, mean_nees, mean_nees_band_95 [2], nees_inside_band,
+/// mean_nees_joint_band_95 [2], nees_inside_joint_band,
 /// coverage_1_2_3_sigma [3], expected_coverage_1_2_3_sigma [3], rms_ratio,
 /// rms_ratio_ci_95 [2], and with the Monte Carlo monte_carlo_radial_rms_m and
 /// monte_carlo_radial_p95_m), when it ran, "monte_carlo" {runs, seed}, and with the

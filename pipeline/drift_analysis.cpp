@@ -271,6 +271,10 @@ DriftAnalysis analyze_drift(const ImuSeries& s, const ins::InsSensorNoise& noise
   const double m = static_cast<double>(segments);
   const double band_low = analysis::chi_square_quantile((1 - kConfidence) / 2, 2 * m) / m;
   const double band_high = analysis::chi_square_quantile((1 + kConfidence) / 2, 2 * m) / m;
+  const double joint_confidence = std::pow(
+      kConfidence, 1.0 / static_cast<double>(std::max<std::size_t>(1, o.report_times_s.size())));
+  const double joint_low = analysis::chi_square_quantile((1 - joint_confidence) / 2, 2 * m) / m;
+  const double joint_high = analysis::chi_square_quantile((1 + joint_confidence) / 2, 2 * m) / m;
   for (double t : o.report_times_s) {
     const std::size_t i = whole_steps(t, o.output_step_s, "report time") - 1;
     DriftConsistency c;
@@ -293,6 +297,9 @@ DriftAnalysis analyze_drift(const ImuSeries& s, const ins::InsSensorNoise& noise
     c.nees_band_low = band_low;
     c.nees_band_high = band_high;
     c.nees_inside = c.mean_nees >= band_low && c.mean_nees <= band_high;
+    c.nees_joint_band_low = joint_low;
+    c.nees_joint_band_high = joint_high;
+    c.nees_inside_joint_band = c.mean_nees >= joint_low && c.mean_nees <= joint_high;
     for (int k = 0; k < 3; ++k) c.coverage[k] = inside[k] / m;
     c.actual_rms_m = std::sqrt(square_sum / m);
     c.rms_ratio = c.actual_rms_m / c.predicted_drms_m;

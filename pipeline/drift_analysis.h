@@ -103,6 +103,11 @@ struct DriftConsistency {
   /// Mean NEES ε̄ = mean eᵀP⁻¹e with P = diag(σ_N², σ_E²); M·ε̄ ~ χ²_{2M} for a consistent model
   double mean_nees = 0.0, nees_band_low = 0.0, nees_band_high = 0.0;  ///< 95 % band of ε̄
   bool nees_inside = false;
+  /// The band each report time's ε̄ must hold so that a consistent model is inside at all K
+  /// report times together with probability ≥ 95 %: each χ²_{2M} band at 0.95^{1/K} (Šidák).
+  /// Conservative: the times share their segments, so their ε̄ are positively correlated.
+  double nees_joint_band_low = 0.0, nees_joint_band_high = 0.0;
+  bool nees_inside_joint_band = false;
   /// Fraction of segments inside the 1σ, 2σ, 3σ ellipses; expected 1 − e^{−k²/2} =
   /// 0.393, 0.865, 0.989 for Gaussian 2-D errors.
   std::array<double, 3> coverage{};

@@ -218,6 +218,9 @@ DriftSummary summary(bool monte_carlo) {
     c.nees_band_low = 1.5;
     c.nees_band_high = 2.625;
     c.nees_inside = t < 100;
+    c.nees_joint_band_low = 1.25;
+    c.nees_joint_band_high = 2.875;
+    c.nees_inside_joint_band = true;
     c.coverage = {0.375, 0.875, 1.0};
     c.rms_ratio = 7.0 / 6.0;
     c.rms_ratio_ci_low = 0.9;
@@ -305,6 +308,9 @@ void expect_same_consistency(const std::vector<pipeline::DriftConsistency>& rc,
     EXPECT_EQ(a.nees_band_low, b.nees_band_low);
     EXPECT_EQ(a.nees_band_high, b.nees_band_high);
     EXPECT_EQ(a.nees_inside, b.nees_inside);
+    EXPECT_EQ(a.nees_joint_band_low, b.nees_joint_band_low);
+    EXPECT_EQ(a.nees_joint_band_high, b.nees_joint_band_high);
+    EXPECT_EQ(a.nees_inside_joint_band, b.nees_inside_joint_band);
     EXPECT_EQ(a.coverage, b.coverage);
     EXPECT_EQ(a.expected_coverage, b.expected_coverage);
     EXPECT_EQ(a.rms_ratio, b.rms_ratio);

@@ -117,6 +117,15 @@ TEST(DriftAnalysis, CovariancePredictionIsConsistentWithSimulatedSegments) {
     EXPECT_TRUE(c.nees_inside) << "t = " << c.time_s << " s: mean NEES " << c.mean_nees
                                << " not in [" << c.nees_band_low << ", " << c.nees_band_high << "]";
     EXPECT_NEAR(c.nees_band_low, analysis::chi_square_quantile(0.025, 120) / 60, 1e-12);
+    // Two report times: each joint band at √0.95 = 0.974679 (Šidák), wider than the per-time one.
+    const double joint = std::sqrt(0.95);
+    EXPECT_NEAR(c.nees_joint_band_low, analysis::chi_square_quantile((1 - joint) / 2, 120) / 60,
+                1e-12);
+    EXPECT_NEAR(c.nees_joint_band_high, analysis::chi_square_quantile((1 + joint) / 2, 120) / 60,
+                1e-12);
+    EXPECT_LT(c.nees_joint_band_low, c.nees_band_low);
+    EXPECT_GT(c.nees_joint_band_high, c.nees_band_high);
+    EXPECT_TRUE(c.nees_inside_joint_band);
     for (int k = 0; k < 3; ++k) {
       const double sd = std::sqrt(expected[k] * (1 - expected[k]) / 60.0);
       EXPECT_NEAR(c.coverage[k], expected[k], 3 * sd + 1.0 / 60) << "k = " << k + 1;

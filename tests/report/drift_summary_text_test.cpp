@@ -56,6 +56,24 @@ TEST(DriftSummaryText, ProtocolAndOneRowPerReportTime) {
             "50/75/100 %");
 }
 
+TEST(DriftSummaryText, OneVerdictOverAllReportTimesFromTheJointBand) {
+  pipeline::DriftSummary s = example_summary();
+  s.consistency[0].nees_joint_band_low = 1.25;
+  s.consistency[0].nees_joint_band_high = 2.875;
+  s.consistency[0].nees_inside_joint_band = true;
+  s.consistency.push_back(s.consistency[0]);
+  s.consistency[1].time_s = 600.0;
+  s.consistency[1].nees_inside = false;  // outside its own band, inside the joint one
+  std::vector<std::string> lines = lines_of(drift_summary_text(s));
+  ASSERT_EQ(lines.size(), 7u);
+  EXPECT_EQ(lines[6],
+            "  all 2 report times together: mean NEES inside the joint 95 % band ([1.25, 2.88] at "
+            "each time)");
+  s.consistency[1].nees_inside_joint_band = false;
+  lines = lines_of(drift_summary_text(s));
+  EXPECT_NE(lines[6].find("mean NEES OUTSIDE the joint 95 % band"), std::string::npos);
+}
+
 TEST(DriftSummaryText, NotesTheAssumedLocationTheForcedRunAndTheMonteCarlo) {
   pipeline::DriftSummary s = example_summary();
   s.location.given = false;
