@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/deviation.h"
 #include "analysis/nnls.h"
 #include "analysis/noise_terms.h"
 #include "common/errors.h"
@@ -65,26 +66,27 @@ ReferenceModel fit_reference(std::span<const double> x, double tau0_s) {
   const std::span<const double> tail = x.subspan(x.size() / kReferenceStartDivisor);
   const std::size_t b = std::max<std::size_t>(1, x.size() / kReferenceBlocks);
   const std::vector<double> y = block_means(tail, b);
-  std::vector<double> sums(y.size() + 1, 0.0);
-  for (std::size_t i = 0; i < y.size(); ++i) sums[i + 1] = sums[i] + y[i];
   const double block_s = static_cast<double>(b) * tau0_s;
-  const std::size_t length = y.size();
+  const auto length = static_cast<std::int64_t>(y.size());
+  // Octave τ up to a sixth of the reference (at least three non-overlapping differences).
+  std::vector<std::int64_t> factors;
+  for (std::int64_t m = 1; 6 * m <= length; m *= 2) factors.push_back(m);
+  if (factors.empty()) return ReferenceModel{};
+  const std::vector<double> phase = analysis::phase_from_rate(y, block_s);
+  if (!std::all_of(phase.begin(), phase.end(), [](double e) { return std::isfinite(e); })) {
+    return ReferenceModel{};  // overflowing values: see the row check below
+  }
+  const std::vector<analysis::VarianceEstimate> oavar =
+      analysis::overlapping_variances(analysis::DeviationType::oadev, phase, factors, block_s);
   std::vector<std::array<double, 4>> rows;
   std::vector<double> rhs;
-  // Octave τ up to a sixth of the reference (at least three non-overlapping differences); each
-  // row is divided by its estimate's relative standard error, ∝ √(m/L) (theory.md §3), so the
-  // fit is in relative terms, as the analysis's own (theory.md §4.3).
-  for (std::size_t m = 1; 6 * m <= length; m *= 2) {
-    double sum = 0.0;
-    const std::size_t count = length - 2 * m + 1;
-    for (std::size_t i = 0; i < count; ++i) {
-      const double d = sums[i + 2 * m] - 2.0 * sums[i + m] + sums[i];
-      sum += d * d;
-    }
-    const double md = static_cast<double>(m);
-    const double oavar = sum / (2.0 * md * md * static_cast<double>(count));
-    if (!(oavar > 0.0)) continue;
-    const double weight = 1.0 / (oavar * std::sqrt(md / static_cast<double>(length)));
+  // Each row is divided by its estimate's relative standard error, ∝ √(m/L) (theory.md §3), so
+  // the fit is in relative terms, as the analysis's own (theory.md §4.3).
+  for (std::size_t i = 0; i < factors.size(); ++i) {
+    const double v = oavar[i].variance;
+    if (!(v > 0.0)) continue;
+    const auto md = static_cast<double>(factors[i]);
+    const double weight = 1.0 / (v * std::sqrt(md / static_cast<double>(length)));
     std::array<double, 4> row{};
     for (std::size_t k = 0; k < row.size(); ++k) {
       row[k] = weight * analysis::term_avar_basis(ReferenceModel::kTerms[k], md * block_s);
@@ -92,11 +94,11 @@ ReferenceModel fit_reference(std::span<const double> x, double tau0_s) {
     // Values whose squares overflow (or underflow to a zero weight) are the axis analysis's to
     // report, with file and channel: here the channel takes no part in the scan (z = 0).
     const bool finite =
-        std::isfinite(oavar) && std::isfinite(weight) &&
-        std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); });
+        std::isfinite(v) && std::isfinite(weight) &&
+        std::all_of(row.begin(), row.end(), [](double e) { return std::isfinite(e); });
     if (!finite) return ReferenceModel{};
     rows.push_back(row);
-    rhs.push_back(weight * oavar);
+    rhs.push_back(weight * v);
   }
   ReferenceModel model;
   if (rows.empty()) return model;  // a constant channel: no scatter, z = 0
@@ -240,6 +242,11 @@ StartTransient detect_start_transient(std::span<const std::span<const double>> c
   const double record_s = static_cast<double>(n) * tau0_s;
   const double tau_low = 2.0 * static_cast<double>(b) * tau0_s;
   const double tau_high = record_s / 2.0;
+  std::vector<double> fit_scale(channels.size());
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const double sd = difference_sd(c, record_s / 32.0);
+    fit_scale[c] = sd > 0.0 ? sd : 1.0;
+  }
   constexpr int kGrid = 48;
   double best_cost = std::numeric_limits<double>::infinity();
   std::vector<double> g(nb);
@@ -252,9 +259,7 @@ StartTransient detect_start_transient(std::span<const std::span<const double>> c
     for (std::size_t c = 0; c < channels.size(); ++c) {
       const auto [a, rss] = fit_offset_and_amplitude(blocks[c], g);
       amplitudes[c] = a;
-      const double sd = difference_sd(c, record_s / 32.0);
-      const double scale = sd > 0.0 ? sd : 1.0;
-      cost += rss / (scale * scale);
+      cost += rss / (fit_scale[c] * fit_scale[c]);
     }
     if (cost < best_cost) {
       best_cost = cost;
