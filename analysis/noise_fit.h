@@ -233,4 +233,32 @@ double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fi
                            int weight_iterations = FitOptions{}.weight_iterations,
                            std::span<const double> used_correlation = {});
 
+/// T_c grid of gauss_markov_upper_bounds(): PER_DECADE points per decade on round values
+/// (10^(j/PER_DECADE) to three significant digits) from the one at or below TAU_MIN_S to the one at
+/// or above TAU_MAX_S — a GM with T_c far outside the fitted τ range acts as white noise (below) or
+/// a random walk (above) there, which N and K's bounds already cover.
+/// @throws ContractViolation unless 0 < TAU_MIN_S ≤ TAU_MAX_S and PER_DECADE ≥ 1.
+std::vector<double> gauss_markov_bound_grid(double tau_min_s, double tau_max_s, int per_decade = 4);
+
+/// Profile upper bounds of a Gauss–Markov term FIT does not hold, one per T_c of TAU_C_GRID_S
+/// (issue 20: when the selection keeps no GM, or fewer than the data have, say which GMs the
+/// data exclude instead of nothing). At each T_c, σ² times the GM's basis is held in the model
+/// and FIT's structure (GM T_c held) re-fitted, as profile_upper_bound() does; σ_max is where the
+/// deviance rises above FIT's own (no further GM) by χ²_p(CONFIDENCE)·f — f as in
+/// profile_upper_bound() (the variance inflation of the GM's direction under USED_CORRELATION,
+/// taken at the best σ; n_used/n_eff without it), p = 1 + the number of FIT's terms the held
+/// fit sets to zero (a K standing in for the GM goes to 0 when the GM is held: a chi-bar-square
+/// statistic). Pointwise in T_c: for a GM of that T_c, σ_max is an upper bound of σ (measured
+/// coverage: tests/analysis/gauss_markov_bound_test.cpp); the region below the curve is a joint
+/// statement on (σ, T_c) whose T_c projection is every T_c. A T_c with no bound within reach of
+/// the data (the GM alone 100× the data at its most favourable point) is left out. Empty when
+/// FIT has fewer than 2 points.
+/// @throws AnalysisError when a point of FIT.used is unusable; ContractViolation when FIT.used
+///   does not index POINTS, a T_c is not positive or USED_CORRELATION is neither empty nor
+///   n_used².
+std::vector<GaussMarkovBound> gauss_markov_upper_bounds(
+    std::span<const FitPoint> points, const FitResult& fit, std::span<const double> tau_c_grid_s,
+    double confidence, int weight_iterations = FitOptions{}.weight_iterations,
+    std::span<const double> used_correlation = {});
+
 }  // namespace imunoise::analysis

@@ -18,6 +18,14 @@ struct GaussMarkov {
   double tau_c_s = 0.0;  ///< correlation time T_c [s], > 0
 };
 
+/// The largest σ of one more first-order Gauss–Markov term of correlation time tau_c_s that the
+/// data allow beside the fitted model (analysis::gauss_markov_upper_bounds): a GM (σ, tau_c_s)
+/// with σ above sigma_max is excluded at the model's confidence.
+struct GaussMarkovBound {
+  double tau_c_s = 0.0;    ///< correlation time T_c [s], > 0
+  double sigma_max = 0.0;  ///< [rad/s | m/s²]
+};
+
 /// Deterministic sinusoid A·sin(2π f t + φ); AVAR A²·sin⁴(πfτ)/(πfτ)² (theory.md §4.1).
 struct Sinusoid {
   double amplitude = 0.0;     ///< A [rad/s | m/s²]

@@ -25,6 +25,7 @@ struct SensorKeys {
   std::string_view sigma;                            ///< Gauss–Markov σ [rad/s | m/s²]
   std::string_view sigma_ci_low;
   std::string_view sigma_ci_high;
+  std::string_view sigma_max;         ///< σ of the Gauss–Markov upper-bound curve
   std::string_view amplitude;         ///< sinusoid amplitude [rad/s | m/s²]
   std::string_view amplitude_ci_low;  ///< its interval (optional in files before it)
   std::string_view amplitude_ci_high;
@@ -38,6 +39,7 @@ inline constexpr SensorKeys kGyroKeys{
     "sigma_rad_per_s",
     "sigma_ci_low_rad_per_s",
     "sigma_ci_high_rad_per_s",
+    "sigma_max_rad_per_s",
     "amplitude_rad_per_s",
     "amplitude_ci_low_rad_per_s",
     "amplitude_ci_high_rad_per_s"};
@@ -51,6 +53,7 @@ inline constexpr SensorKeys kAccelKeys{
     "sigma_m_per_s2",
     "sigma_ci_low_m_per_s2",
     "sigma_ci_high_m_per_s2",
+    "sigma_max_m_per_s2",
     "amplitude_m_per_s2",
     "amplitude_ci_low_m_per_s2",
     "amplitude_ci_high_m_per_s2"};
@@ -98,6 +101,7 @@ inline constexpr std::string_view kFrequency = "frequency_hz";
 inline constexpr std::string_view kPhase = "phase_rad";
 inline constexpr std::string_view kConvention = "convention";
 inline constexpr std::string_view kGaussMarkov = "gauss_markov";
+inline constexpr std::string_view kGaussMarkovBound = "gauss_markov_upper_bound";
 inline constexpr std::string_view kSinusoids = "sinusoids";
 inline constexpr std::string_view kBiasGm = "bias_instability_as_gauss_markov";
 inline constexpr std::string_view kMultiGm = "bias_instability_multi_gm";

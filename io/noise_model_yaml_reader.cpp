@@ -285,8 +285,8 @@ class Reader {
 
     std::vector<std::string_view> accepted{kSensor};
     accepted.insert(accepted.end(), keys.terms.begin(), keys.terms.end());
-    accepted.insert(accepted.end(),
-                    {kGaussMarkov, kSinusoids, kBiasGm, kMultiGm, kFit, kReadoff, kPsdCheck});
+    accepted.insert(accepted.end(), {kGaussMarkov, kGaussMarkovBound, kSinusoids, kBiasGm, kMultiGm,
+                                     kFit, kReadoff, kPsdCheck});
     map.accept_only(accepted,
                     (axis.kind == SensorKind::gyro ? "a " : "an ") + sensor_text + " axis");
 
@@ -296,6 +296,17 @@ class Reader {
     if (const YAML::Node* list = map.find(kGaussMarkov)) {
       read_list(*list, map.child(kGaussMarkov), [&](const YAML::Node& item, const auto& at) {
         axis.gauss_markov.push_back(read_gauss_markov(item, at, keys));
+      });
+    }
+    if (const YAML::Node* list = map.find(kGaussMarkovBound)) {
+      read_list(*list, map.child(kGaussMarkovBound), [&](const YAML::Node& item, const auto& at) {
+        const Map entry(*this, item, at);
+        entry.accept_only({kTauC, keys.sigma_max});
+        GaussMarkovBound b;
+        b.tau_c_s = number(entry.require(kTauC), entry.child(kTauC), Range::kPositive);
+        b.sigma_max =
+            number(entry.require(keys.sigma_max), entry.child(keys.sigma_max), Range::kNonNegative);
+        axis.gauss_markov_bounds.push_back(b);
       });
     }
     if (const YAML::Node* list = map.find(kSinusoids)) {

@@ -146,6 +146,18 @@ class Writer {
     }
     list(4, kGaussMarkov, items, "first-order Gauss-Markov terms: sigma, correlation time");
 
+    // The bound curve only when computed (analyze): a model from a datasheet or an older file
+    // is written as before.
+    if (!axis.gauss_markov_bounds.empty()) {
+      items.clear();
+      for (const GaussMarkovBound& b : axis.gauss_markov_bounds) {
+        items.push_back(
+            FlowMap().number(kTauC, b.tau_c_s).number(keys.sigma_max, b.sigma_max).text());
+      }
+      list(4, kGaussMarkovBound, items,
+           "one more GM term of this T_c with a larger sigma is excluded (profile bound)");
+    }
+
     items.clear();
     for (const SinusoidEstimate& s : axis.sinusoids) {
       items.push_back(FlowMap()

@@ -61,7 +61,11 @@ struct AxisModel {
   std::string name;                    ///< gyro_x … accel_z
   SensorKind kind = SensorKind::gyro;  ///< gyro (rad/s) or accelerometer (m/s²)
   PerTerm<Estimate> terms;
-  std::vector<GaussMarkovEstimate> gauss_markov;       ///< fitted GM terms (if any)
+  std::vector<GaussMarkovEstimate> gauss_markov;  ///< fitted GM terms (if any)
+  /// The σ of one more GM term the data exclude, per T_c over the fitted τ range (a GM term
+  /// the fit does not hold lies below the curve at the confidence of the model); empty when
+  /// not computed.
+  std::vector<GaussMarkovBound> gauss_markov_bounds;
   std::vector<SinusoidEstimate> sinusoids;             ///< fitted sinusoids (if any)
   std::vector<BiasInstabilityGm> bias_instability_gm;  ///< B as one GM, each convention
   std::vector<GaussMarkov> multi_gm;  ///< B as 2–4 GMs (theory.md §4.4 "preferred"); empty if B = 0

@@ -473,9 +473,21 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // Upper bounds of the terms not identified, then the identified terms' intervals widened
   // by them (analysis/selection_uncertainty.h): dropping K must not leave B's interval
   // conditional on K = 0 when the data allow K up to its bound.
+  // The correlation of the OAVAR estimates at the fitted points under the fitted model, once
+  // for the power-law bounds and the Gauss–Markov bound curve.
+  const std::vector<double> bound_correlation =
+      gls_correlation.empty() ? used_point_correlation(out.fit, m_oadev, tau0_s, total_samples)
+                              : gls_correlation;
   const PerTerm<double> upper_bounds =
       selection_upper_bounds(points, out.fit, m_oadev, tau0_s, total_samples, options.confidence,
-                             fit_options.weight_iterations, gls_correlation);
+                             fit_options.weight_iterations, bound_correlation);
+  // The GMs the data exclude (issue 20): a GM the selection leaves out, or a second one beside
+  // a fitted one, is bounded at each T_c of the fitted range instead of being silently absent.
+  if (!out.fit.used.empty() && out.fit.tau_min_s > 0.0) {
+    model.gauss_markov_bounds = analysis::gauss_markov_upper_bounds(
+        points, out.fit, analysis::gauss_markov_bound_grid(out.fit.tau_min_s, out.fit.tau_max_s),
+        options.confidence, fit_options.weight_iterations, bound_correlation);
+  }
   const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
       points, out.fit, intervals, upper_bounds, fit_options.weight_iterations);
   for (NoiseTerm term : kNoiseTerms) {

@@ -86,6 +86,12 @@ void expect_same(const GaussMarkovEstimate& a, const GaussMarkovEstimate& b,
   expect_bits(tau_c_ci_high_s, b.tau_c_ci_high_s, at + ".tau_c_ci_high_s");
 }
 
+void expect_same(const GaussMarkovBound& a, const GaussMarkovBound& b, const std::string& at) {
+  const auto& [tau_c_s, sigma_max] = a;
+  expect_bits(tau_c_s, b.tau_c_s, at + ".tau_c_s");
+  expect_bits(sigma_max, b.sigma_max, at + ".sigma_max");
+}
+
 void expect_same(const BiasInstabilityGm& a, const BiasInstabilityGm& b, const std::string& at) {
   const auto& [convention, value] = a;
   EXPECT_EQ(convention, b.convention) << at;
@@ -107,9 +113,9 @@ void expect_same(const ReadoffValues& a, const ReadoffValues& b, const std::stri
 }
 
 void expect_same(const AxisModel& a, const AxisModel& b) {
-  const auto& [name, kind, terms, gauss_markov, sinusoids, bias_instability_gm, multi_gm,
-               multi_gm_fraction_inside_ci, tau_min_adev_s, fit_tau_min_s, fit_tau_max_s, fit_note,
-               readoff, psd_check_pass, psd_check_note] = a;
+  const auto& [name, kind, terms, gauss_markov, gauss_markov_bounds, sinusoids, bias_instability_gm,
+               multi_gm, multi_gm_fraction_inside_ci, tau_min_adev_s, fit_tau_min_s, fit_tau_max_s,
+               fit_note, readoff, psd_check_pass, psd_check_note] = a;
   const std::string at = "axis '" + name + "'";
   EXPECT_EQ(name, b.name);
   EXPECT_EQ(kind, b.kind) << at;
@@ -117,6 +123,7 @@ void expect_same(const AxisModel& a, const AxisModel& b) {
     expect_same(terms[t], b.terms[t], at + ".terms" + std::to_string(t));
   }
   expect_same_list(gauss_markov, b.gauss_markov, at + ".gauss_markov");
+  expect_same_list(gauss_markov_bounds, b.gauss_markov_bounds, at + ".gauss_markov_bounds");
   expect_same_list(sinusoids, b.sinusoids, at + ".sinusoids");
   expect_same_list(bias_instability_gm, b.bias_instability_gm, at + ".bias_instability_gm");
   expect_same_list(multi_gm, b.multi_gm, at + ".multi_gm");
@@ -203,6 +210,7 @@ NoiseModel awkward_model() {
                 estimate(0.0, 0.0, 0.0, true, "", "")};
   gyro.gauss_markov = {{{kThird, 100.0}, 0.0, 1.0, kTiny, kHuge},
                        {{2.5e-5, 1e-300}, 2.5e-5, 2.5e-5, 1e-300, 1e-299}};
+  gyro.gauss_markov_bounds = {{0.01, kHuge}, {0.0178, kThird}, {1e300, 0.0}, {kTiny, 1e-300}};
   gyro.sinusoids = {{{-1e-3, 0.5, -0.0}, -2e-3, 0.0},
                     {{kSum, 1e-300, -3.141592653589793}, kTiny, kHuge}};
   gyro.bias_instability_gm = {{"min_adev_at_tau_min", {1e-5, 29.6}},
@@ -227,6 +235,7 @@ NoiseModel awkward_model() {
                               t % 2 == 0, s[8 + t], s[13 - t]);
   }
   accel.gauss_markov = {{{9.80665e-6, 3600.0}, 1e-6, 2e-5, 1800.0, 7200.0}};
+  accel.gauss_markov_bounds = {{1780.0, 2.5e-4}};
   accel.sinusoids = {{{kThird, 49.99, 1.0}, 0.0, 1.0}};
   accel.bias_instability_gm = {{"sigma_equals_b", {kSum, kThird}}};
   accel.multi_gm = {};
@@ -566,12 +575,13 @@ TEST(NoiseModelYaml, RejectsNonNumbersAtTheirLine) {
 }
 
 TEST(NoiseModelYaml, UnknownKeyIsNamedWithTheAcceptedOnes) {
-  expect_rejected(minimal_plus(6, "    colour: blue"),
-                  "model.yaml:7:5: axes.gyro_x.colour: unknown key for a gyro axis (accepted: "
-                  "sensor, quantization_rad, white_noise_rad_per_sqrt_s, "
-                  "bias_instability_rad_per_s, random_walk_rad_per_s_sqrt_s, ramp_rad_per_s2, "
-                  "gauss_markov, sinusoids, bias_instability_as_gauss_markov, "
-                  "bias_instability_multi_gm, fit, readoff, psd_check)");
+  expect_rejected(
+      minimal_plus(6, "    colour: blue"),
+      "model.yaml:7:5: axes.gyro_x.colour: unknown key for a gyro axis (accepted: "
+      "sensor, quantization_rad, white_noise_rad_per_sqrt_s, "
+      "bias_instability_rad_per_s, random_walk_rad_per_s_sqrt_s, ramp_rad_per_s2, "
+      "gauss_markov, gauss_markov_upper_bound, sinusoids, bias_instability_as_gauss_markov, "
+      "bias_instability_multi_gm, fit, readoff, psd_check)");
   expect_rejected(minimal_with(7, "    quantization_rad: {value: 0, ci_lo: 0}"),
                   "model.yaml:7:34: axes.gyro_x.quantization_rad.ci_lo: unknown key (accepted: "
                   "value, ci_low, ci_high, identified, method, interval_method)");
@@ -641,6 +651,11 @@ TEST(NoiseModelYaml, NegativeOrOutOfRangeValuesAreRejected) {
   expect_rejected(minimal_plus(3, "samples: -5"), "model.yaml:4:10: samples: must be >= 0");
   expect_rejected(minimal_plus(11, "    gauss_markov: [{sigma_rad_per_s: 1e-5, tau_c_s: 0}]"),
                   "model.yaml:12:53: axes.gyro_x.gauss_markov[0].tau_c_s: must be > 0, got 0");
+  expect_rejected(
+      minimal_plus(11, "    gauss_markov_upper_bound: [{tau_c_s: 10, sigma_max_rad_per_s: -1}]"),
+      "axes.gyro_x.gauss_markov_upper_bound[0].sigma_max_rad_per_s: must be >= 0, got -1");
+  expect_rejected(minimal_plus(11, "    gauss_markov_upper_bound: [{sigma_max_rad_per_s: 1}]"),
+                  "axes.gyro_x.gauss_markov_upper_bound[0]: missing required key 'tau_c_s'");
   expect_rejected(minimal_plus(11, "    readoff: {psd: {ramp_rad_per_s2: -1}}"),
                   "axes.gyro_x.readoff.psd.ramp_rad_per_s2: must be >= 0, got -1");
   expect_rejected(minimal_plus(11, "    bias_instability_multi_gm: {fraction_inside_ci: 1.5}"),

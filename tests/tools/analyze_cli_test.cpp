@@ -103,22 +103,27 @@ TEST(AnalyzeCli, ThreadCountDoesNotChangeAnyOutput) {
   const CommandResult sim = run_imunoise("simulate " + model.string() +
                                          " --duration 20min --rate 50 --seed 8 -o " + rec.string());
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
-  std::string reference[3];
-  for (const char* threads : {"1", "3", "2"}) {
-    const auto out = dir / (std::string("out") + threads);
-    const CommandResult r = run_imunoise("analyze " + rec.string() + " --bootstrap 2 --threads " +
-                                         threads + " -o " + out.string());
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    int k = 0;
-    for (const char* name : {"model.yaml", "allan.csv", "psd.csv"}) {
-      const std::string text = read_file_bytes(out / name);
-      ASSERT_FALSE(text.empty()) << name;
-      if (reference[k].empty()) {
-        reference[k] = text;
-      } else {
-        EXPECT_TRUE(text == reference[k]) << name << " differs with --threads " << threads;
+  // The default intervals (the interval draws of the OAVAR vector, issue 21) and the simulated
+  // record bootstrap.
+  for (const std::string intervals : {"", " --bootstrap 2"}) {
+    std::string reference[3];
+    for (const char* threads : {"1", "3", "2"}) {
+      const auto out = dir / (std::string("out") + threads + (intervals.empty() ? "d" : "b"));
+      const CommandResult r = run_imunoise("analyze " + rec.string() + intervals + " --threads " +
+                                           threads + " -o " + out.string());
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      int k = 0;
+      for (const char* name : {"model.yaml", "allan.csv", "psd.csv"}) {
+        const std::string text = read_file_bytes(out / name);
+        ASSERT_FALSE(text.empty()) << name;
+        if (reference[k].empty()) {
+          reference[k] = text;
+        } else {
+          EXPECT_TRUE(text == reference[k])
+              << name << " differs with --threads " << threads << intervals;
+        }
+        ++k;
       }
-      ++k;
     }
   }
 }

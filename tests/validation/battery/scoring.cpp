@@ -41,6 +41,21 @@ double record_length(const BatteryCase& c) {
   return static_cast<double>(c.spec.samples) / c.spec.rate_hz;
 }
 
+/// The GM upper bound of AXIS at TAU_C_S, interpolated linearly in (ln T_c, ln σ_max) between
+/// its curve's points; none outside the curve's T_c range.
+std::optional<double> gauss_markov_bound_at(const models::AxisModel& axis, double tau_c_s) {
+  const std::vector<GaussMarkovBound>& curve = axis.gauss_markov_bounds;
+  for (std::size_t j = 0; j + 1 < curve.size(); ++j) {
+    const GaussMarkovBound& a = curve[j];
+    const GaussMarkovBound& b = curve[j + 1];
+    if (tau_c_s < a.tau_c_s || tau_c_s > b.tau_c_s) continue;
+    if (!(a.sigma_max > 0.0 && b.sigma_max > 0.0)) return std::max(a.sigma_max, b.sigma_max);
+    const double w = std::log(tau_c_s / a.tau_c_s) / std::log(b.tau_c_s / a.tau_c_s);
+    return std::exp((1.0 - w) * std::log(a.sigma_max) + w * std::log(b.sigma_max));
+  }
+  return std::nullopt;
+}
+
 /// The rows of one channel; AXIS may be null (channel missing or analysis failed).
 void score_channel(const BatteryCase& c, const ChannelTruth& t, const models::AxisModel* axis,
                    std::vector<ScoreRow>& rows, std::vector<ChannelExtras>& extras) {
@@ -103,6 +118,16 @@ void score_channel(const BatteryCase& c, const ChannelTruth& t, const models::Ax
       tau.ci_high = e.tau_c_ci_high_s;
       sigma.covered = sigma.ci_low <= g.sigma && g.sigma <= sigma.ci_high;
       tau.covered = tau.ci_low <= g.tau_c_s && g.tau_c_s <= tau.ci_high;
+    } else if (const std::optional<double> bound =
+                   axis ? gauss_markov_bound_at(*axis, g.tau_c_s) : std::nullopt) {
+      // Not identified: model.yaml's upper-bound curve excludes the GMs above it. The truth
+      // is covered when it lies below the curve — one joint statement on (σ, T_c), scored on
+      // both rows (its T_c projection is every T_c), as a power-law term not identified is
+      // covered by [0, its upper bound].
+      sigma.has_interval = tau.has_interval = true;
+      sigma.ci_high = *bound;
+      tau.ci_high = std::numeric_limits<double>::infinity();
+      sigma.covered = tau.covered = g.sigma <= *bound;
     }
     rows.push_back(sigma);
     rows.push_back(tau);
