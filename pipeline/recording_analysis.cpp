@@ -13,6 +13,7 @@
 #include "common/number_text.h"
 #include "common/parallel_for.h"
 #include "pipeline/data_quality.h"
+#include "pipeline/datasheet_check.h"
 #include "pipeline/line_findings.h"
 #include "pipeline/low_pass_corner.h"
 #include "pipeline/temperature_coefficient.h"
@@ -298,6 +299,10 @@ RecordingAnalysis analyze(const Recording& recording, const std::string& source,
           " s, where that deficit (decaying like 1/tau) is below 0.2 % of N^2/tau (" +
           options.low_pass_setting + " keeps the short tau)");
     }
+  }
+  if (options.spec) {
+    for (std::string& line : datasheet_findings(model, *options.spec))
+      model.data_quality.push_back(std::move(line));
   }
   return result;
 }

@@ -14,6 +14,7 @@
 #include "common/progress_callback.h"
 #include "models/noise_model.h"
 #include "pipeline/axis_analysis.h"
+#include "pipeline/fleet.h"
 #include "pipeline/gap_policy.h"
 #include "pipeline/outliers.h"
 #include "pipeline/recording.h"
@@ -43,6 +44,10 @@ struct RecordingAnalysisOptions {
   std::string temperature_setting{"temperature_compensate"};  ///< its name in the finding
   /// How the low-pass finding names the switch that keeps the short τ ("--no-low-pass-check").
   std::string low_pass_setting{"no_low_pass_check"};
+  /// The sensor's datasheet (the spec of `imunoise fleet --spec`): the fitted white noise is
+  /// held to its density, which shows an output decimated without averaging
+  /// (pipeline/datasheet_check.h). Unset: no such check (the data alone cannot show it).
+  std::optional<FleetSpec> spec;
   unsigned threads = 0;  ///< worker threads across channels (0 = all cores)
 };
 

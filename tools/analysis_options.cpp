@@ -16,6 +16,7 @@
 #include "common/number_text.h"
 #include "io/duration_parser.h"
 #include "io/fftw_wisdom.h"
+#include "io/fleet_spec.h"
 #include "io/stage_progress.h"
 #include "io/terminal_progress_bar.h"
 #include "pipeline/gap_policy.h"
@@ -154,6 +155,12 @@ void add_analysis_options(CLI::App& cmd, AnalysisSettings& s) {
                "coefficient x (T - mean T) before the fit (the coefficient is reported either "
                "way)")
       ->group(group);
+  cmd.add_option("--spec", s.spec,
+                 "the sensor's datasheet spec YAML (the format of 'imunoise fleet --spec': per "
+                 "sensor and term a value in datasheet units): a white noise N at least sqrt(2) "
+                 "x the datasheet's gets the finding 'output likely decimated without "
+                 "averaging', which the data alone cannot show")
+      ->group(group);
   cmd.add_option(
          "--fftw-wisdom", s.fftw_wisdom,
          "FFTW wisdom file from 'imunoise fftw-wisdom': the PSD transforms use its "
@@ -191,6 +198,7 @@ pipeline::RecordingAnalysisOptions recording_analysis_options(const AnalysisSett
   options.temperature_compensate = settings.temperature_compensate;
   options.temperature_setting = "--temperature-compensate";
   options.low_pass_setting = "--no-low-pass-check";
+  if (!settings.spec.empty()) options.spec = io::read_fleet_spec(settings.spec);
   options.threads = settings.threads;
   return options;
 }

@@ -49,6 +49,9 @@ struct AnalysisSettings {
   /// `--trim-start DURATION`: the start to drop; unset = the automatic warm-up trim, "0" = none.
   std::optional<std::string> trim_start;
   bool temperature_compensate = false;  ///< `--temperature-compensate`
+  /// `--spec FILE`: the sensor's datasheet spec (the format of `imunoise fleet --spec`); empty:
+  /// none.
+  std::string spec;
   /// `--fftw-wisdom FILE`; unset: $IMUNOISE_FFTW_WISDOM, if set and not empty; set to "": no
   /// wisdom whatever the environment says.
   std::optional<std::string> fftw_wisdom;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "common/units.h"
 #include "io/noise_model_yaml.h"
@@ -162,6 +163,54 @@ TEST(AnalyzeCli, GeneralizedLeastSquaresEstimatorIsNamedAndKeepsTheTruthInside) 
   EXPECT_NE(edf.exit_code, 0);
   EXPECT_NE(edf.err.find("--min-edf: expected an EDF in [1, 100], got 0.5"), std::string::npos)
       << edf.err;
+}
+
+TEST(AnalyzeCli, DatasheetSpecShowsAWhiteNoiseAboveItsDensityAsADecimation) {
+  // The truth's gyro N is 0.4 deg/√h and its accel N 1.471e-3 m/s/√s = 150 µg/√Hz. Against a
+  // datasheet of half the gyro density (what a decimation by 4 without averaging does to the
+  // record) each gyro axis gets the finding and no accel axis; against the truth's own
+  // densities none does; a spec file that does not exist stops with its path.
+  const auto dir = make_temp_dir("analyze_spec");
+  const auto model_file = dir / "truth.yaml";
+  write_white_and_walk_model(model_file);
+  const auto rec = dir / "rec.csv";
+  ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 20min --seed 6 -o " +
+                         rec.string())
+                .exit_code,
+            0);
+  const auto findings_with = [&](const std::string& spec_text, const std::string& name) {
+    const auto spec = dir / (name + ".yaml");
+    write_text(spec, spec_text);
+    const auto out = dir / name;
+    const CommandResult r = run_imunoise("analyze " + rec.string() + " --spec " + spec.string() +
+                                         " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> lines;
+    for (const std::string& line : io::load_model_yaml((out / "model.yaml").string()).data_quality)
+      if (line.find("decimated without averaging") != std::string::npos) lines.push_back(line);
+    return lines;
+  };
+  const std::vector<std::string> half = findings_with(
+      "name: half density\ngyro:\n  arw_deg_per_sqrt_h: 0.2\naccel:\n  vrw_ug_per_sqrt_hz: "
+      "150\n",
+      "half");
+  ASSERT_EQ(half.size(), 3u);
+  for (std::size_t i = 0; i < half.size(); ++i) {
+    EXPECT_EQ(half[i].rfind(std::string("gyro_") + "xyz"[i] + ": output likely decimated", 0), 0u)
+        << half[i];
+    EXPECT_NE(half[i].find("the datasheet's 0.2 deg/sqrt(h) (half density)"), std::string::npos)
+        << half[i];
+  }
+  EXPECT_TRUE(
+      findings_with("gyro:\n  arw_deg_per_sqrt_h: 0.4\naccel:\n  vrw_ug_per_sqrt_hz: 150\n", "same")
+          .empty());
+
+  const CommandResult missing =
+      run_imunoise("analyze " + rec.string() + " --spec " + (dir / "nope.yaml").string() + " -o " +
+                   (dir / "bad").string());
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("nope.yaml"), std::string::npos) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad" / "model.yaml"));
 }
 
 TEST(AnalyzeCli, TooShortRecordStopsWithAClearMessage) {

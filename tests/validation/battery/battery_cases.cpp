@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 namespace imunoise::battery {
@@ -101,6 +102,14 @@ BatteryCase base_case(const std::string& class_name, const Grade& g, BatterySize
   }
   c.spec.rate_hz = rate;
   c.spec.samples = static_cast<std::size_t>(std::llround(rate * duration));
+  {
+    std::ostringstream datasheet;
+    datasheet.precision(17);
+    datasheet << "name: battery " << g.name
+              << " grade\ngyro:\n  arw_deg_per_sqrt_h: " << g.gyro.n / kDegPerSqrtHour
+              << "\naccel:\n  vrw_ug_per_sqrt_hz: " << g.accel.n / kMicroGPerSqrtHz << "\n";
+    c.datasheet = datasheet.str();
+  }
   for (int ch = 0; ch < 6; ++ch) {
     const bool gyro = ch < 3;
     const SensorNoise& s = gyro ? g.gyro : g.accel;

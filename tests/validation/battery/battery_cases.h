@@ -59,6 +59,10 @@ struct BatteryCase {
   std::array<ChannelTruth, 6> truth;
   std::vector<Phenomenon> phenomena;
   bool write_stamps = false;  ///< write the stamps (as CSV with a time column), else a fixed rate
+  /// The grade's datasheet as `imunoise fleet --spec` reads it: the nominal white-noise density
+  /// of each sensor (the x axis, before any phenomenon), which the runner gives `analyze --spec`
+  /// (a decimation without averaging is visible only against it).
+  std::string datasheet;
 };
 
 /// Sizes: `full` is the closing-note battery, `reduced` the ctest one (rate ≤ 100 Hz, 20 min),

@@ -8,8 +8,11 @@
 ///
 ///   battery_runner [--size full|reduced|long] [--classes all|a,b,…] [--seeds N] [--first-seed S]
 ///                  [--out DIR] [--imunoise PATH] [--keep] [--check] [--acceptance]
-///                  [--describe]
+///                  [--describe] [--no-datasheet]
 ///                  [-- ANALYZE_FLAGS…]
+/// Every analysis gets the grade's datasheet (`--spec`, the nominal white-noise densities:
+/// BatteryCase::datasheet), which adds findings and changes no coefficient; --no-datasheet
+/// leaves it out.
 ///
 /// Full run (closing-note figures; about 25 min on 2 cores with the default intervals of main at
 /// e7bd791, about 3.4 h with `-- --bootstrap 50`):
@@ -55,6 +58,7 @@ struct Options {
   bool check = false;
   bool acceptance = false;
   bool describe = false;
+  bool datasheet = true;  ///< give analyze the grade's datasheet (--spec); --no-datasheet: not
   std::vector<std::string> analyze_flags;
 };
 
@@ -81,6 +85,8 @@ Options parse(int argc, char** argv) {
     };
     if (a == "--") {
       for (++i; i < argc; ++i) o.analyze_flags.push_back(argv[i]);
+    } else if (a == "--no-datasheet") {
+      o.datasheet = false;
     } else if (a == "--size") {
       const std::string v = value();
       if (v != "full" && v != "reduced" && v != "long")
@@ -212,6 +218,11 @@ RecordingResult run_case(const Options& o, const BatteryCase& c, const fs::path&
   std::ostringstream command;
   command << shell_quote(o.imunoise) << " analyze " << shell_quote(rec.string()) << " -o "
           << shell_quote(dir.string());
+  if (o.datasheet) {
+    const fs::path datasheet = work / (tag + "_datasheet.yaml");
+    std::ofstream(datasheet) << c.datasheet;
+    command << " --spec " << shell_quote(datasheet.string());
+  }
   for (const std::string& f : o.analyze_flags) command << ' ' << shell_quote(f);
   command << " > " << shell_quote((work / (tag + ".log")).string()) << " 2>&1";
   start = Clock::now();
@@ -314,7 +325,8 @@ int main(int argc, char** argv) {
                                                                 : "long") +
                               " size, seeds " + std::to_string(o.first_seed) + "–" +
                               std::to_string(o.first_seed + o.seeds - 1) +
-                              ", analyze flags:" + (flags.empty() ? " default" : flags) + ")";
+                              ", analyze flags:" + (flags.empty() ? " default" : flags) +
+                              (o.datasheet ? " + --spec <the grade's datasheet>" : "") + ")";
     write_text(o.out / "rows.csv", rows_csv(results));
     write_text(o.out / "recordings.csv", recordings_csv(results));
     write_text(o.out / "summary.md", summary_markdown(results, title));

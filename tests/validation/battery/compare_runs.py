@@ -20,7 +20,8 @@ def rows(path):
     for r in csv.DictReader(open(path)):
         if float(r["truth"]) <= 0 or r["has_interval"] != "1":
             continue
-        out[(r["class"], r["seed"], r["channel"], r["term"])] = r
+        # A channel has several GM terms or lines: the truth's T_c or frequency tells them apart.
+        out[(r["class"], r["seed"], r["channel"], r["term"], r["truth_f_hz_or_tau_c_s"])] = r
     return out
 
 
@@ -35,7 +36,8 @@ def main(argv):
     print(f"| coefficient | pairs | covered {names[0]} ± SE | covered {names[1]} ± SE | "
           f"{names[1]} − {names[0]} ± SE | width {names[0]}/{names[1]} median [10 %, 90 %] |")
     print("|---|---|---|---|---|---|")
-    for term in ("quantization", "white_noise", "bias_instability", "random_walk", "ramp"):
+    for term in ("quantization", "white_noise", "bias_instability", "random_walk", "ramp",
+                 "gm_sigma", "gm_tau_c", "sinusoid_amplitude"):
         ks = [k for k in keys if k[3] == term]
         if not ks:
             continue
@@ -51,7 +53,7 @@ def main(argv):
         for k in ks:
             wa = float(a[k]["ci_high"]) - float(a[k]["ci_low"])
             wb = float(b[k]["ci_high"]) - float(b[k]["ci_low"])
-            if wa > 0 and wb > 0:
+            if 0 < wa < math.inf and 0 < wb < math.inf:
                 ratios.append(wa / wb)
         ratios.sort()
         q = lambda f: ratios[min(len(ratios) - 1, int(f * len(ratios)))]
