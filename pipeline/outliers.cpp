@@ -37,13 +37,15 @@ double robust_scale(std::vector<double> v) {
 /// stays a few passes over the record.
 constexpr std::size_t kScaleSamples = 65536;
 
-/// Every ⌈n/kScaleSamples⌉-th value of V.
-std::vector<double> strided(const std::vector<double>& v) {
-  const std::size_t stride =
-      std::max<std::size_t>(1, (v.size() + kScaleSamples - 1) / kScaleSamples);
+/// VALUE(i) at every ⌈n/kScaleSamples⌉-th i < N: the residuals are computed where sampled, not
+/// held for the whole record (at 24 h at 1 kHz one array of them is 0.66 GB per channel in
+/// flight, which set the analysis's peak memory).
+template <class Value>
+std::vector<double> strided(std::size_t n, Value value) {
+  const std::size_t stride = std::max<std::size_t>(1, (n + kScaleSamples - 1) / kScaleSamples);
   std::vector<double> out;
-  out.reserve(v.size() / stride + 1);
-  for (std::size_t i = 0; i < v.size(); i += stride) out.push_back(v[i]);
+  out.reserve(n / stride + 1);
+  for (std::size_t i = 0; i < n; i += stride) out.push_back(value(i));
   return out;
 }
 
@@ -74,7 +76,7 @@ double neighbour_median(std::span<const double> x, std::size_t k) {
 /// instead of 3.0σ_r (0.13 %, each carrying 64σ²: N +0.2 % at 5 % spikes). NaN when a side
 /// has no good sample within reach.
 constexpr std::size_t kGoodNeighbours = 4;
-double good_neighbour_mean(std::span<const double> x, const std::vector<char>& bad, std::size_t k) {
+double good_neighbour_mean(std::span<const double> x, const std::vector<bool>& bad, std::size_t k) {
   double sum = 0.0;
   std::size_t left = 0, right = 0;
   for (std::size_t d = 1; d <= 2 * kGoodNeighbours && left < kGoodNeighbours && d <= k; ++d) {
@@ -108,11 +110,12 @@ OutlierPolicy parse_outlier_policy(std::string_view text, std::string_view setti
 OutlierScan find_outliers(std::span<const double> x) {
   OutlierScan out;
   if (x.size() < 16) return out;
-  std::vector<double> r(x.size());
-  for (std::size_t k = 0; k < x.size(); ++k) r[k] = x[k] - neighbour_median(x, k);
+  const std::size_t n = x.size();
+  // r_k = x_k − the median of its four neighbours (first pass), computed where needed.
+  const auto first_residual = [&x](std::size_t k) { return x[k] - neighbour_median(x, k); };
   // The scale of r from all samples (the outliers inflate it a little), then once more from
   // the samples inside the first threshold, and the outliers beyond the second.
-  const std::vector<double> r_sample = strided(r);
+  const std::vector<double> r_sample = strided(n, first_residual);
   out.residual_scale = robust_scale(r_sample);
   if (!(out.residual_scale > 0.0)) return out;  // e.g. a coarse LSB: no scale to judge by
   {
@@ -126,20 +129,21 @@ OutlierScan find_outliers(std::span<const double> x) {
     if (rescaled > 0.0) out.residual_scale = rescaled;
   }
   const double limit = kOutlierThreshold * out.residual_scale;
-  std::vector<char> first(x.size(), 0);
-  for (std::size_t k = 0; k < r.size(); ++k) first[k] = std::abs(r[k]) > limit;
+  std::vector<bool> first(n, false);
+  for (std::size_t k = 0; k < n; ++k) first[k] = std::abs(first_residual(k)) > limit;
   // Second pass: each sample against the mean of its good neighbours, and the scale again from
   // these residuals. In the first pass two spikes of one sign among the four neighbours lift
   // their median by several σ and inflate the scale, so a spike can stay below the threshold:
   // at 5 % spikes of ±8σ about 0.4 % of them, each carrying 64σ², which left N +0.5 % after
-  // the drop — against intervals of ±0.2 % (the battery's outliers class).
-  for (std::size_t k = 0; k < r.size(); ++k) {
+  // the drop — against intervals of ±0.2 % (the battery's outliers class). A sample without
+  // good neighbours on reach keeps its first-pass residual.
+  const auto second_residual = [&](std::size_t k) {
     const double m = good_neighbour_mean(x, first, k);
-    if (std::isfinite(m)) r[k] = x[k] - m;
-  }
+    return std::isfinite(m) ? x[k] - m : first_residual(k);
+  };
   {
     std::vector<double> inside;
-    const std::vector<double> r2 = strided(r);
+    const std::vector<double> r2 = strided(n, second_residual);
     inside.reserve(r2.size());
     for (double v : r2) {
       if (std::abs(v) <= limit) inside.push_back(v);
@@ -149,31 +153,31 @@ OutlierScan find_outliers(std::span<const double> x) {
   }
   const double limit2 = kOutlierThreshold * out.residual_scale;
   double total = 0.0, flagged = 0.0;
-  std::vector<char> bad(x.size(), 0);
-  for (std::size_t k = 0; k < r.size(); ++k) {
-    const double s = r[k] * r[k];
+  std::vector<bool> bad(n, false);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double r = second_residual(k);
+    const double s = r * r;
     total += s;
-    if (std::abs(r[k]) > limit2) {
+    if (std::abs(r) > limit2) {
       out.indices.push_back(k);
-      bad[k] = 1;
+      bad[k] = true;
       flagged += s;
-      out.largest = std::max(out.largest, std::abs(r[k]) / out.residual_scale);
+      out.largest = std::max(out.largest, std::abs(r) / out.residual_scale);
     }
   }
   // The per-sample σ from the first differences between good samples only (with 5 % spikes
   // a tenth of all differences hold one, which would inflate the MAD by 13 %).
   std::vector<double> d;
-  const std::size_t stride =
-      std::max<std::size_t>(1, (x.size() + kScaleSamples - 1) / kScaleSamples);
-  d.reserve(x.size() / stride + 1);
-  for (std::size_t k = 0; k + 1 < x.size(); k += stride) {
+  const std::size_t stride = std::max<std::size_t>(1, (n + kScaleSamples - 1) / kScaleSamples);
+  d.reserve(n / stride + 1);
+  for (std::size_t k = 0; k + 1 < n; k += stride) {
     if (!bad[k] && !bad[k + 1]) d.push_back(x[k + 1] - x[k]);
   }
   out.sample_sigma = robust_scale(std::move(d)) / std::numbers::sqrt2;
   if (total > 0.0) {
     // What Gaussian noise of the robust scale puts beyond the threshold is not an outlier's.
     const double expected = gaussian_tail_variance_fraction(kOutlierThreshold) *
-                            static_cast<double>(r.size()) * out.residual_scale * out.residual_scale;
+                            static_cast<double>(n) * out.residual_scale * out.residual_scale;
     out.excess_variance_fraction = std::max(0.0, (flagged - expected) / total);
   }
   out.significant = out.excess_variance_fraction >= kOutlierFindingFraction;
