@@ -39,7 +39,8 @@ constexpr std::size_t kScaleSamples = 65536;
 
 /// VALUE(i) at every ⌈n/kScaleSamples⌉-th i < N: the residuals are computed where sampled, not
 /// held for the whole record (at 24 h at 1 kHz one array of them is 0.66 GB per channel in
-/// flight, which set the analysis's peak memory).
+/// flight, which set the analysis's peak memory; the flags are kept as index lists for the
+/// same reason).
 template <class Value>
 std::vector<double> strided(std::size_t n, Value value) {
   const std::size_t stride = std::max<std::size_t>(1, (n + kScaleSamples - 1) / kScaleSamples);
@@ -76,15 +77,51 @@ double neighbour_median(std::span<const double> x, std::size_t k) {
 /// instead of 3.0σ_r (0.13 %, each carrying 64σ²: N +0.2 % at 5 % spikes). NaN when a side
 /// has no good sample within reach.
 constexpr std::size_t kGoodNeighbours = 4;
-double good_neighbour_mean(std::span<const double> x, const std::vector<bool>& bad, std::size_t k) {
+/// The first pass's flagged samples (increasing; rare: the scan holds no per-sample array) as
+/// the second pass walks the record: a cursor to the first flag at or after k − 2·kGoodNeighbours.
+class NearFlags {
+ public:
+  explicit NearFlags(std::span<const std::size_t> flags) : flags_(flags) {}
+  /// The flags within ±2·kGoodNeighbours of K (K never decreases between calls, except that a
+  /// call with a smaller K restarts the search).
+  std::span<const std::size_t> around(std::size_t k) {
+    constexpr std::size_t reach = 2 * kGoodNeighbours;
+    const std::size_t low = k >= reach ? k - reach : 0;
+    if (k < last_k_) next_ = 0;
+    last_k_ = k;
+    while (next_ < flags_.size() && flags_[next_] < low) ++next_;
+    std::size_t end = next_;
+    while (end < flags_.size() && flags_[end] <= k + reach) ++end;
+    return flags_.subspan(next_, end - next_);
+  }
+
+ private:
+  std::span<const std::size_t> flags_;
+  std::size_t next_ = 0, last_k_ = 0;
+};
+
+/// NEAR: the flagged samples within ±2·kGoodNeighbours of K (NearFlags::around).
+double good_neighbour_mean(std::span<const double> x, std::span<const std::size_t> near,
+                           std::size_t k) {
+  constexpr std::size_t reach = 2 * kGoodNeighbours;
+  if (near.empty() && k >= kGoodNeighbours && k + kGoodNeighbours < x.size()) {
+    // No flag in reach (the usual case): the four nearest on each side, summed in the order
+    // of the general loop below, so the mean is the same to the bit.
+    double sum = 0.0;
+    for (std::size_t d = 1; d <= kGoodNeighbours; ++d) sum += x[k - d];
+    for (std::size_t d = 1; d <= kGoodNeighbours; ++d) sum += x[k + d];
+    return sum / static_cast<double>(2 * kGoodNeighbours);
+  }
+  const auto is_bad = [near](std::size_t i) {
+    return std::find(near.begin(), near.end(), i) != near.end();
+  };
   double sum = 0.0;
   std::size_t left = 0, right = 0;
-  for (std::size_t d = 1; d <= 2 * kGoodNeighbours && left < kGoodNeighbours && d <= k; ++d) {
-    if (!bad[k - d]) sum += x[k - d], ++left;
+  for (std::size_t d = 1; d <= reach && left < kGoodNeighbours && d <= k; ++d) {
+    if (!is_bad(k - d)) sum += x[k - d], ++left;
   }
-  for (std::size_t d = 1; d <= 2 * kGoodNeighbours && right < kGoodNeighbours && k + d < x.size();
-       ++d) {
-    if (!bad[k + d]) sum += x[k + d], ++right;
+  for (std::size_t d = 1; d <= reach && right < kGoodNeighbours && k + d < x.size(); ++d) {
+    if (!is_bad(k + d)) sum += x[k + d], ++right;
   }
   if (left + right < kGoodNeighbours) return std::numeric_limits<double>::quiet_NaN();
   return sum / static_cast<double>(left + right);
@@ -129,16 +166,19 @@ OutlierScan find_outliers(std::span<const double> x) {
     if (rescaled > 0.0) out.residual_scale = rescaled;
   }
   const double limit = kOutlierThreshold * out.residual_scale;
-  std::vector<bool> first(n, false);
-  for (std::size_t k = 0; k < n; ++k) first[k] = std::abs(first_residual(k)) > limit;
+  std::vector<std::size_t> first;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::abs(first_residual(k)) > limit) first.push_back(k);
+  }
   // Second pass: each sample against the mean of its good neighbours, and the scale again from
   // these residuals. In the first pass two spikes of one sign among the four neighbours lift
   // their median by several σ and inflate the scale, so a spike can stay below the threshold:
   // at 5 % spikes of ±8σ about 0.4 % of them, each carrying 64σ², which left N +0.5 % after
   // the drop — against intervals of ±0.2 % (the battery's outliers class). A sample without
   // good neighbours on reach keeps its first-pass residual.
+  NearFlags near(first);
   const auto second_residual = [&](std::size_t k) {
-    const double m = good_neighbour_mean(x, first, k);
+    const double m = good_neighbour_mean(x, near.around(k), k);
     return std::isfinite(m) ? x[k] - m : first_residual(k);
   };
   {
@@ -153,14 +193,12 @@ OutlierScan find_outliers(std::span<const double> x) {
   }
   const double limit2 = kOutlierThreshold * out.residual_scale;
   double total = 0.0, flagged = 0.0;
-  std::vector<bool> bad(n, false);
   for (std::size_t k = 0; k < n; ++k) {
     const double r = second_residual(k);
     const double s = r * r;
     total += s;
     if (std::abs(r) > limit2) {
       out.indices.push_back(k);
-      bad[k] = true;
       flagged += s;
       out.largest = std::max(out.largest, std::abs(r) / out.residual_scale);
     }
@@ -170,8 +208,11 @@ OutlierScan find_outliers(std::span<const double> x) {
   std::vector<double> d;
   const std::size_t stride = std::max<std::size_t>(1, (n + kScaleSamples - 1) / kScaleSamples);
   d.reserve(n / stride + 1);
+  const auto is_bad = [&out](std::size_t i) {
+    return std::binary_search(out.indices.begin(), out.indices.end(), i);
+  };
   for (std::size_t k = 0; k + 1 < n; k += stride) {
-    if (!bad[k] && !bad[k + 1]) d.push_back(x[k + 1] - x[k]);
+    if (!is_bad(k) && !is_bad(k + 1)) d.push_back(x[k + 1] - x[k]);
   }
   out.sample_sigma = robust_scale(std::move(d)) / std::numbers::sqrt2;
   if (total > 0.0) {
