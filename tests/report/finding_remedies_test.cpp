@@ -171,6 +171,7 @@ std::vector<ExplainedFinding> drift_findings() {
   c.time_s = 600.0;
   c.mean_nees = 9.5;
   c.nees_inside = false;
+  c.nees_inside_joint_band = false;
   s.consistency.push_back(c);
   r.drift_summary = s;
   const ReportDocument doc = build_report_page(r, "now");
