@@ -27,6 +27,20 @@ void write_white_and_walk_model(const std::filesystem::path& file) {
              "  z: {specific_force_m_per_s2: -9.80665}\n");
 }
 
+/// DIR/rec.csv: the white-and-walk model (written to DIR/truth.yaml) simulated for DURATION
+/// with SEED; empty when simulate failed (the test then fails with its message).
+std::filesystem::path simulated_white_and_walk(const std::filesystem::path& dir,
+                                               const std::string& duration, int seed) {
+  const auto model_file = dir / "truth.yaml";
+  write_white_and_walk_model(model_file);
+  const auto rec = dir / "rec.csv";
+  const CommandResult sim =
+      run_imunoise("simulate " + model_file.string() + " --duration " + duration + " --seed " +
+                   std::to_string(seed) + " -o " + rec.string());
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  return sim.exit_code == 0 ? rec : std::filesystem::path();
+}
+
 TEST(AnalyzeCli, SimulatedRecordGivesModelYamlAndCsvFilesWithTheTruthInside) {
   const auto dir = make_temp_dir("analyze_cli");
   const auto model_file = dir / "truth.yaml";
@@ -133,13 +147,8 @@ TEST(AnalyzeCli, GeneralizedLeastSquaresEstimatorIsNamedAndKeepsTheTruthInside) 
   // `--estimator gls` re-estimates the selected model with the correlation across τ; the
   // estimate's method says so, and N stays inside its interval. A wrong name is refused.
   const auto dir = make_temp_dir("analyze_gls");
-  const auto model_file = dir / "truth.yaml";
-  write_white_and_walk_model(model_file);
-  const auto rec = dir / "rec.csv";
-  ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 30min --seed 5 -o " +
-                         rec.string())
-                .exit_code,
-            0);
+  const auto rec = simulated_white_and_walk(dir, "30min", 5);
+  ASSERT_FALSE(rec.empty());
   const auto out = dir / "out";
   const CommandResult r =
       run_imunoise("analyze " + rec.string() + " --estimator gls -o " + out.string());
@@ -171,13 +180,8 @@ TEST(AnalyzeCli, DatasheetSpecShowsAWhiteNoiseAboveItsDensityAsADecimation) {
   // record) each gyro axis gets the finding and no accel axis; against the truth's own
   // densities none does; a spec file that does not exist stops with its path.
   const auto dir = make_temp_dir("analyze_spec");
-  const auto model_file = dir / "truth.yaml";
-  write_white_and_walk_model(model_file);
-  const auto rec = dir / "rec.csv";
-  ASSERT_EQ(run_imunoise("simulate " + model_file.string() + " --duration 20min --seed 6 -o " +
-                         rec.string())
-                .exit_code,
-            0);
+  const auto rec = simulated_white_and_walk(dir, "20min", 6);
+  ASSERT_FALSE(rec.empty());
   const auto findings_with = [&](const std::string& spec_text, const std::string& name) {
     const auto spec = dir / (name + ".yaml");
     write_text(spec, spec_text);
