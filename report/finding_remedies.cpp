@@ -126,9 +126,24 @@ std::string walk_or_ramp_remedy(const FindingContext&) {
   return "a record several times longer tells them apart (R grows like τ², K like τ); a "
          "known trend (temperature) is a ramp: remove it before the analysis";
 }
-std::string gm_choice_remedy(const FindingContext&) {
-  return "nothing to do; analyze --gauss-markov fits the GM terms inside the one model "
-         "selection, --no-gauss-markov leaves them out";
+std::string gm_choice_remedy(const FindingContext& c) {
+  std::string remedy =
+      "nothing to do; analyze --gauss-markov fits the GM terms inside the one model "
+      "selection, --no-gauss-markov leaves them out";
+  if (c.axis == nullptr || c.axis->gauss_markov_bounds.empty()) return remedy;
+  // Where the data say most: the lowest point of the axis's bound curve (a GM the model does
+  // not hold, of that T_c, is below it; analysis::gauss_markov_upper_bounds).
+  const GaussMarkovBound* lowest = &c.axis->gauss_markov_bounds.front();
+  for (const GaussMarkovBound& b : c.axis->gauss_markov_bounds)
+    if (b.sigma_max < lowest->sigma_max) lowest = &b;
+  const models::DatasheetUnit unit =
+      models::datasheet_unit(NoiseTerm::bias_instability, c.axis->kind);
+  return remedy + "; a further GM term is bounded by model.yaml's gauss_markov_upper_bound (" +
+         std::to_string(c.axis->gauss_markov_bounds.size()) +
+         " correlation times), most tightly sigma < " +
+         significant_number_text(lowest->sigma_max * unit.factor, 2) + " " +
+         std::string(unit.ascii) + " at T_c = " + significant_number_text(lowest->tau_c_s, 3) +
+         " s";
 }
 std::string drift_motion_remedy(const FindingContext&) {
   return "record again on a still mount; imunoise drift --force runs anyway";

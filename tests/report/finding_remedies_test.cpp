@@ -245,6 +245,24 @@ TEST(FindingRemedies, UnknownTextGetsAGenericCauseAndRemedyAndSelfExplainedTextI
   EXPECT_EQ(own.remedy, "trim the first 900 s");
 }
 
+TEST(FindingRemedies, TheGaussMarkovChoiceNamesTheTightestPointOfTheBoundCurve) {
+  models::AxisModel axis;
+  axis.name = "gyro_y";
+  axis.kind = SensorKind::gyro;
+  const std::string text =
+      "Gauss-Markov model not kept: penalized deviance 137 against 118 without GM terms";
+  EXPECT_EQ(explain_finding("gyro_y", {text, nullptr, &axis}).remedy.find("gauss_markov_upper"),
+            std::string::npos);
+  // 4.848e-6 rad/s = 1 deg/h at T_c 300 s is the lowest point.
+  axis.gauss_markov_bounds = {{30.0, 1e-5}, {300.0, 4.848136811e-6}, {3000.0, 2e-5}};
+  const ExplainedFinding f = explain_finding("gyro_y", {text, nullptr, &axis});
+  EXPECT_EQ(f.kind, "gm_model_compared");
+  EXPECT_NE(f.remedy.find("gauss_markov_upper_bound (3 correlation times), most tightly sigma < 1 "
+                          "deg/h at T_c = 300 s"),
+            std::string::npos)
+      << f.remedy;
+}
+
 TEST(FindingRemedies, TheRecordingIsNamedInTheRemedies) {
   models::NoiseModel model;
   model.source = "data/rec.csv";
