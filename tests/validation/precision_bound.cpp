@@ -26,6 +26,8 @@ namespace {
 using namespace imunoise;
 using namespace imunoise::analysis;
 
+constexpr double kPi = 3.14159265358979323846;
+
 struct Case {
   const char* name;
   NoiseCoefficients truth;
@@ -73,7 +75,8 @@ int main() {
   }
   std::printf(
       "| channel | rate [Hz] | length [h] | points | N: GLS bound / default | B: GLS bound "
-      "/ default | K: GLS bound / default |\n|---|---|---|---|---|---|---|\n");
+      "/ default | K: GLS bound / default | B: Whittle | K: Whittle |\n"
+      "|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     const double tau0 = 1.0 / c.rate_hz;
     const auto n = static_cast<std::int64_t>(c.hours * 3600.0 * c.rate_hz);
@@ -103,6 +106,33 @@ int main() {
     const Eigen::MatrixXd bread = (phi.transpose() * w.asDiagonal() * phi).inverse();
     const Eigen::MatrixXd wls =
         bread * (phi.transpose() * w.asDiagonal() * cov * w.asDiagonal() * phi) * bread;
+    // The Whittle (periodogram) Fisher information of the same coefficients from the whole
+    // record: each Fourier ordinate f_k = k/T, 0 < k < n/2, is S(f_k)·Exp(1) with S the
+    // two-sided density (theory.md §5.3: Q 4sin²(πfτ0)Q²/τ0, N N², B B²/(2πf), K K²/(2πf)²), so
+    // I = Σ_k ∇S ∇Sᵀ / S² — the asymptotic information of the Gaussian likelihood, what any
+    // estimator from the samples (not only from the OAVAR points) can reach.
+    Eigen::MatrixXd fisher = Eigen::MatrixXd::Zero(p, p);
+    {
+      const double record = static_cast<double>(n) * tau0;
+      Eigen::VectorXd g(p);
+      for (std::int64_t q = 1; 2 * q < n; ++q) {
+        const double f = static_cast<double>(q) / record;
+        const double w = 2.0 * kPi * f;
+        double density = 0.0;
+        for (Eigen::Index j = 0; j < p; ++j) {
+          const NoiseTerm t = terms[static_cast<std::size_t>(j)];
+          const double sine = std::sin(kPi * f * tau0);
+          g(j) = t == NoiseTerm::quantization       ? 4.0 * sine * sine / tau0
+                 : t == NoiseTerm::white_noise      ? 1.0
+                 : t == NoiseTerm::bias_instability ? 1.0 / w
+                 : t == NoiseTerm::random_walk      ? 1.0 / (w * w)
+                                                    : 0.0;
+          density += g(j) * std::pow(coefficient(c.truth, t), 2);
+        }
+        fisher.noalias() += g * g.transpose() / (density * density);
+      }
+    }
+    const Eigen::MatrixXd whittle = fisher.inverse();
     std::printf("| %s | %.0f | %.0f | %lld |", c.name, c.rate_hz, c.hours,
                 static_cast<long long>(k));
     for (NoiseTerm t :
@@ -120,6 +150,18 @@ int main() {
         return 100.0 * 0.674 * std::sqrt(std::max(v(j, j), 0.0)) / (2.0 * c2);
       };
       std::printf(" %.2f %% / %.2f %% |", median_error(gls), median_error(wls));
+    }
+    for (NoiseTerm t : {NoiseTerm::bias_instability, NoiseTerm::random_walk}) {
+      Eigen::Index j = -1;
+      for (Eigen::Index i = 0; i < p; ++i)
+        if (terms[static_cast<std::size_t>(i)] == t) j = i;
+      if (j < 0) {
+        std::printf(" — |");
+        continue;
+      }
+      const double c2 = std::pow(coefficient(c.truth, t), 2);
+      std::printf(" %.2f %% |",
+                  100.0 * 0.674 * std::sqrt(std::max(whittle(j, j), 0.0)) / (2.0 * c2));
     }
     std::printf("\n");
   }
