@@ -220,22 +220,32 @@ void apply_model_noise_type(analysis::DeviationCurve& curve, const NoiseCoeffici
   }
 }
 
-std::vector<double> used_point_correlation(const analysis::FitResult& fit,
-                                           std::span<const std::int64_t> m_list, double tau0_s,
-                                           std::int64_t total_samples) {
-  std::vector<double> used_correlation;
+analysis::VarianceCovariance used_point_moments(const analysis::FitResult& fit,
+                                                std::span<const std::int64_t> m_list, double tau0_s,
+                                                std::int64_t total_samples) {
   std::vector<std::int64_t> used_m;
   for (std::size_t k : fit.used) used_m.push_back(m_list[k]);
-  if (used_m.empty()) return used_correlation;
-  const analysis::VarianceCovariance vc = analysis::overlapping_variance_covariance(
-      fit.coefficients, tau0_s, total_samples, used_m, fit.hadamard);
-  const Eigen::MatrixXd rho = analysis::correlation_matrix(vc);
-  const std::size_t n = used_m.size();
+  if (used_m.empty()) return {};
+  return analysis::overlapping_variance_covariance(fit.coefficients, tau0_s, total_samples, used_m,
+                                                   fit.hadamard);
+}
+
+std::vector<double> row_major_correlation(const analysis::VarianceCovariance& moments) {
+  std::vector<double> used_correlation;
+  const std::size_t n = moments.expected.size();
+  if (n == 0) return used_correlation;
+  const Eigen::MatrixXd rho = analysis::correlation_matrix(moments);
   used_correlation.resize(n * n);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
       used_correlation[i * n + j] = rho(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
   return used_correlation;
+}
+
+std::vector<double> used_point_correlation(const analysis::FitResult& fit,
+                                           std::span<const std::int64_t> m_list, double tau0_s,
+                                           std::int64_t total_samples) {
+  return row_major_correlation(used_point_moments(fit, m_list, tau0_s, total_samples));
 }
 
 PerTerm<double> selection_upper_bounds(std::span<const analysis::FitPoint> points,
@@ -374,16 +384,15 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     fit_options.tau_min_s = low_pass_tau_min(out.oadev);
   }
   out.fit = fit_with_model_noise_types(out.oadev, fit_options, points);
-  std::vector<double> gls_correlation;
   if (options.generalized_least_squares) {
     // The selected structure re-estimated with the correlation across τ in the weights: the
     // first pass weights from the selected model, the second from the first GLS model; the
-    // interval draws then use the final model's correlation.
+    // interval draws then use the final model's correlation (below).
     for (int pass = 0; pass < 2; ++pass) {
-      gls_correlation = used_point_correlation(out.fit, m_oadev, tau0_s, total_samples);
-      out.fit = analysis::generalized_refit(points, out.fit, fit_options, gls_correlation);
+      out.fit = analysis::generalized_refit(
+          points, out.fit, fit_options,
+          used_point_correlation(out.fit, m_oadev, tau0_s, total_samples));
     }
-    gls_correlation = used_point_correlation(out.fit, m_oadev, tau0_s, total_samples);
   }
   apply_model_noise_type(out.oadev, out.fit.coefficients);
   apply_model_noise_type(out.ohdev, out.fit.coefficients);
@@ -439,6 +448,13 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     }
     model.fit_note += std::string(model.fit_note.empty() ? "" : "; ") + note;
   }
+  // The joint moments of the OAVAR estimates at the fitted points under the final model, once
+  // per axis: the interval draws' distribution and, as a correlation, the weights of the GLS
+  // refits (--estimator gls) and the variance inflation of the upper bounds and the
+  // Gauss–Markov bound curve.
+  const analysis::VarianceCovariance moments =
+      used_point_moments(out.fit, m_oadev, tau0_s, total_samples);
+  const std::vector<double> correlation = row_major_correlation(moments);
   PerTerm<Interval> intervals{};
   std::string interval_method;
   std::vector<Interval> gm_sigma, gm_tau;
@@ -449,7 +465,8 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
     boot.seed = options.seed * 1000003ULL + static_cast<std::uint64_t>(axis_index);
     boot.confidence = options.confidence;
     boot.threads = options.threads;
-    boot.used_correlation = gls_correlation;
+    if (options.generalized_least_squares) boot.used_correlation = correlation;
+    boot.moments = &moments;
     if (options.progress) {
       boot.progress = [&progress](std::string_view stage, std::int64_t done, std::int64_t) {
         progress(stage, 4 + done);
@@ -473,20 +490,15 @@ AxisAnalysis analyze_axis_pieces(const std::string& name, SensorKind kind,
   // Upper bounds of the terms not identified, then the identified terms' intervals widened
   // by them (analysis/selection_uncertainty.h): dropping K must not leave B's interval
   // conditional on K = 0 when the data allow K up to its bound.
-  // The correlation of the OAVAR estimates at the fitted points under the fitted model, once
-  // for the power-law bounds and the Gauss–Markov bound curve.
-  const std::vector<double> bound_correlation =
-      gls_correlation.empty() ? used_point_correlation(out.fit, m_oadev, tau0_s, total_samples)
-                              : gls_correlation;
   const PerTerm<double> upper_bounds =
       selection_upper_bounds(points, out.fit, m_oadev, tau0_s, total_samples, options.confidence,
-                             fit_options.weight_iterations, bound_correlation);
+                             fit_options.weight_iterations, correlation);
   // The GMs the data exclude (issue 20): a GM the selection leaves out, or a second one beside
   // a fitted one, is bounded at each T_c of the fitted range instead of being silently absent.
   if (!out.fit.used.empty() && out.fit.tau_min_s > 0.0) {
     model.gauss_markov_bounds = analysis::gauss_markov_upper_bounds(
         points, out.fit, analysis::gauss_markov_bound_grid(out.fit.tau_min_s, out.fit.tau_max_s),
-        options.confidence, fit_options.weight_iterations, bound_correlation);
+        options.confidence, fit_options.weight_iterations, correlation);
   }
   const PerTerm<analysis::SelectionWidening> widened = analysis::selection_widened_intervals(
       points, out.fit, intervals, upper_bounds, fit_options.weight_iterations);

@@ -19,6 +19,7 @@
 #include "analysis/slope_readoff.h"
 #include "analysis/spectral_lines.h"
 #include "analysis/tau_grid.h"
+#include "analysis/variance_covariance.h"
 #include "common/progress_callback.h"
 #include "models/noise_model.h"
 #include "pipeline/bootstrap.h"
@@ -137,9 +138,19 @@ analysis::FitResult fit_with_model_noise_types(analysis::DeviationCurve& curve,
                                                const analysis::FitOptions& options,
                                                std::vector<analysis::FitPoint>& points);
 
-/// The correlation of the OAVAR (OHVAR when FIT.hadamard) estimates at FIT.used under FIT's
-/// model (analysis/variance_covariance.h), row-major n_used²; M_LIST[k] is the averaging factor
-/// of the k-th fit point, the record TOTAL_SAMPLES samples at period TAU0_S. A point without
+/// The joint moments of the OAVAR (OHVAR when FIT.hadamard) estimates at FIT.used under FIT's
+/// model (analysis::overlapping_variance_covariance); M_LIST[k] is the averaging factor of the
+/// k-th fit point, the record TOTAL_SAMPLES samples at period TAU0_S. Empty when FIT uses none.
+analysis::VarianceCovariance used_point_moments(const analysis::FitResult& fit,
+                                                std::span<const std::int64_t> m_list, double tau0_s,
+                                                std::int64_t total_samples);
+
+/// The correlation of MOMENTS' estimates, row-major (analysis::correlation_matrix); empty for
+/// empty moments.
+std::vector<double> row_major_correlation(const analysis::VarianceCovariance& moments);
+
+/// row_major_correlation(used_point_moments(…)): the correlation of the OAVAR (OHVAR when
+/// FIT.hadamard) estimates at FIT.used under FIT's model, row-major n_used². A point without
 /// variance under the model is uncorrelated.
 std::vector<double> used_point_correlation(const analysis::FitResult& fit,
                                            std::span<const std::int64_t> m_list, double tau0_s,

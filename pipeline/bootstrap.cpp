@@ -86,9 +86,12 @@ BootstrapResult bootstrap_fit(const analysis::FitResult& fit,
 
   const bool simulate = options.source == ReplicateSource::simulated_record;
   std::optional<analysis::VarianceDraw> variance_draw;
-  if (!simulate)
-    variance_draw.emplace(
-        analysis::overlapping_variance_covariance(fit.coefficients, tau0_s, n_samples, used_m));
+  if (!simulate) {
+    variance_draw.emplace(options.moments != nullptr
+                              ? *options.moments
+                              : analysis::overlapping_variance_covariance(fit.coefficients, tau0_s,
+                                                                          n_samples, used_m));
+  }
 
   // Per worker: one array the record's size, the simulated rate turned into phase in place,
   // so a worker holds 8 bytes per sample (a 24 h record at 1 kHz: 0.7 GB), not 16; and the

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "analysis/noise_fit.h"
+#include "analysis/variance_covariance.h"
 #include "common/noise_coefficients.h"
 #include "common/progress_callback.h"
 
@@ -39,6 +40,10 @@ struct BootstrapOptions {
   /// replicate is refitted by generalized least squares with it (analysis::refit_fixed_terms);
   /// empty: the independent-point fit.
   std::vector<double> used_correlation;
+  /// With ReplicateSource::variance_draw: the joint moments of the estimates at the fit's used
+  /// points under FIT's model (analysis::overlapping_variance_covariance), when the caller has
+  /// them (it outlives the call); null: computed here.
+  const analysis::VarianceCovariance* moments = nullptr;
   /// Optional: ("bootstrap", replicates finished, replicates) after each replicate, from the
   /// worker threads. Does not change the result.
   ProgressCallback progress;
