@@ -167,14 +167,20 @@ double refine_frequency(std::span<const std::span<const double>> pieces, double 
   return f0 + std::clamp(refined, -half_width, half_width);
 }
 
-/// The median of the raw densities j − h … j + h without |k − j| ≤ e (REFERENCE is scratch);
-/// REFERENCE holds the values used afterwards.
-double reference_median(const Spectrum& raw, std::size_t j, std::size_t h, std::size_t e,
-                        std::vector<double>& reference) {
+/// The continuum's reference values at bin J: the raw densities j − h … j + h without the main
+/// lobe |k − j| ≤ e, into REFERENCE (replacing its content).
+void collect_reference(const Spectrum& raw, std::size_t j, std::size_t h, std::size_t e,
+                       std::vector<double>& reference) {
   reference.clear();
   for (std::size_t k = j - h; k <= j + h; ++k) {
     if (k + e < j || k > j + e) reference.push_back(raw.density[k]);
   }
+}
+
+/// The median of collect_reference()'s values (REFERENCE is scratch).
+double reference_median(const Spectrum& raw, std::size_t j, std::size_t h, std::size_t e,
+                        std::vector<double>& reference) {
+  collect_reference(raw, j, h, e, reference);
   const std::size_t m = reference.size();
   const auto middle = reference.begin() + static_cast<std::ptrdiff_t>(m / 2);
   std::nth_element(reference.begin(), middle, reference.end());
@@ -235,18 +241,17 @@ LineDetection detect_spectral_lines(const Spectrum& raw, const LineSearchOptions
   for (std::size_t lag = 1; lag <= 3; ++lag) correlation_sum += power_correlation(raw, lag);
   std::map<std::pair<std::size_t, long long>, double> thresholds;  // (m, ν·100) → r
   std::map<long long, double> median_ratios;                       // ν·100 → median(χ²_ν/ν)
-  std::vector<double> reference;
   struct Hit {
     std::size_t bin;
     double ratio, continuum, threshold;
   };
   std::vector<Hit> hits;
-  // The reference window of reference_median(), kept sorted while j steps by one with the same
+  // The reference window of collect_reference(), kept sorted while j steps by one with the same
   // h: two values leave it (j − 1 − h, and j + e, which enters the main lobe) and two enter
   // (j + h, and j − 1 − e, which leaves the lobe) — a few moves of ~2h values per bin instead
   // of a copy and a selection (this loop was the analysis's largest single cost at 8 h × 50 Hz).
-  // The same values, so the same median bit for bit.
-  std::vector<double>& window = reference;
+  // The same values, so the same median as reference_median() bit for bit.
+  std::vector<double> window;
   std::size_t window_h = 0;
   const auto erase_value = [&window](double v) {
     window.erase(std::lower_bound(window.begin(), window.end(), v));
@@ -262,10 +267,7 @@ LineDetection detect_spectral_lines(const Spectrum& raw, const LineSearchOptions
       insert_value(raw.density[j + h]);
       insert_value(raw.density[j - 1 - e]);
     } else {
-      window.clear();
-      for (std::size_t k = j - h; k <= j + h; ++k) {
-        if (k + e < j || k > j + e) window.push_back(raw.density[k]);
-      }
+      collect_reference(raw, j, h, e, window);
       std::sort(window.begin(), window.end());
       window_h = h;
     }
