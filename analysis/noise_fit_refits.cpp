@@ -173,31 +173,39 @@ double direction_inflation(const Data& data, const std::vector<Column>& columns,
   return std::isfinite(f) ? std::max(f, 1.0) : 1.0;
 }
 
-}  // namespace
+/// How profile_bound() measures and searches. The power-law bounds set only d_ref (D without the
+/// term; the rest as when they were validated); the Gauss–Markov curve sets all four.
+struct ProfileRule {
+  double c_start = 0.0;  ///< where the search starts: the best c (the profile's optimum)
+  double d_ref = 0.0;    ///< the deviance the rise is measured from
+  /// χ²_p with p = 1 + the number of COLUMNS the held fit sets to zero, instead of χ²₁: a term
+  /// pushed onto its bound c ≥ 0 makes the profile statistic a chi-bar-square mixture of up to
+  /// that many more degrees of freedom (a random walk that stands in for a Gauss–Markov term
+  /// goes to 0 when the GM is held near its truth; measured in
+  /// tests/analysis/gauss_markov_bound_test.cpp: with χ²₁ the bound held the truth in 88 % of
+  /// the draws, the statistic's quantiles ~1.55× those of χ²₁, i.e. close to χ²₂).
+  bool chi_bar = false;
+  /// Bisection in ln c from 1e-8 of the bracket's top, 26 halvings (3e-7 relative), instead of
+  /// 60 linear halvings: under half the solves, for the ~20 bounds per axis of the GM curve.
+  bool log_search = false;
+};
 
-namespace {
-
-/// The coefficient c ≥ C_START at which c²·PHI held in the model (COLUMNS re-fitted by the
-/// re-weighted NNLS) raises the deviance over D_REF by χ²_p(CONFIDENCE)·f, f the variance
-/// inflation of PHI's direction under USED_CORRELATION at C_START (n_used/n_eff without it);
-/// infinity if no c within reach of the data (c²·PHI 100× the data at its most favourable point)
-/// does. p = 1, or with BOUNDARY_AWARE 1 + the number of COLUMNS the held fit sets to zero: a
-/// term pushed onto its bound c ≥ 0 makes the profile statistic a chi-bar-square mixture of up
-/// to that many more degrees of freedom (a random walk that stands in for a Gauss–Markov term
-/// goes to 0 when the GM is held near its truth; measured in
-/// tests/analysis/gauss_markov_bound_test.cpp: with p = 1 the bound held the truth in 88 % of
-/// the draws, the statistic's quantiles ~1.55× those of χ²₁, i.e. close to χ²₂).
+/// The coefficient c ≥ RULE.c_start at which c²·PHI held in the model (COLUMNS re-fitted by the
+/// re-weighted NNLS) raises the deviance over RULE.d_ref by χ²(CONFIDENCE)·f (χ²₁, or χ²_p with
+/// RULE.chi_bar), f the variance inflation of PHI's direction under USED_CORRELATION at c_start
+/// (n_used/n_eff without it); infinity if no c within reach of the data (c²·PHI 100× the data at
+/// its most favourable point) does.
 double profile_bound(const Data& data, const std::vector<Column>& columns, bool hadamard,
                      const Eigen::VectorXd& phi, double confidence, int weight_iterations,
-                     std::span<const double> used_correlation, double c_start, double d_ref,
-                     bool boundary_aware, const char* where) {
+                     std::span<const double> used_correlation, const ProfileRule& rule,
+                     const char* where) {
   const auto n = static_cast<Eigen::Index>(data.size());
   double inflation = static_cast<double>(data.size()) / effective_point_count(data);
   if (!used_correlation.empty()) {
     IMUNOISE_EXPECT(used_correlation.size() == data.size() * data.size(),
                     std::string(where) + ": the correlation must be n_used x n_used");
     inflation = direction_inflation(data, columns, hadamard, weight_iterations, phi,
-                                    used_correlation, c_start);
+                                    used_correlation, rule.c_start);
   }
   const double target_one = chi_square_quantile(confidence, 1.0) * inflation;
   // Whether c is beyond the bound: the deviance of the best fit of the other terms with c²·φ
@@ -205,11 +213,11 @@ double profile_bound(const Data& data, const std::vector<Column>& columns, bool 
   const auto beyond = [&](double c) {
     const Solution s = solve(data, columns, hadamard, weight_iterations, c * c * phi);
     double target = target_one;
-    if (boundary_aware) {
+    if (rule.chi_bar) {
       const auto zero = static_cast<double>((s.c.array() <= 0.0).count());
       if (zero > 0.0) target = chi_square_quantile(confidence, 1.0 + zero) * inflation;
     }
-    return s.deviance - d_ref > target;
+    return s.deviance - rule.d_ref > target;
   };
   double c_hi = 0.0;
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -217,12 +225,9 @@ double profile_bound(const Data& data, const std::vector<Column>& columns, bool 
       c_hi = std::max(c_hi, std::sqrt(100.0 * data.y[static_cast<std::size_t>(k)] / phi(k)));
     }
   }
-  if (!(c_hi > c_start) || !beyond(c_hi)) return std::numeric_limits<double>::infinity();
-  double c_lo = c_start;
-  if (boundary_aware) {
-    // The Gauss–Markov curve (a bound per T_c, ~20 per axis): bisection in ln c from 1e-8 of
-    // the bracket's top, 26 halvings to 3e-7 relative instead of 60 linear ones (under half
-    // the solves; the curve's cost was half the interval stage at 8 h × 50 Hz).
+  if (!(c_hi > rule.c_start) || !beyond(c_hi)) return std::numeric_limits<double>::infinity();
+  double c_lo = rule.c_start;
+  if (rule.log_search) {
     c_lo = std::max(c_lo, 1e-8 * c_hi);
     if (beyond(c_lo)) return c_lo;
     for (int i = 0; i < 26; ++i) {
@@ -259,7 +264,7 @@ double profile_upper_bound(std::span<const FitPoint> points, const FitResult& fi
   const double d0 =
       solve(data, columns, fit.hadamard, weight_iterations, zero_offset(data)).deviance;
   return profile_bound(data, columns, fit.hadamard, phi, confidence, weight_iterations,
-                       used_correlation, 0.0, d0, false, "profile_upper_bound");
+                       used_correlation, ProfileRule{.d_ref = d0}, "profile_upper_bound");
 }
 
 std::vector<double> gauss_markov_bound_grid(double tau_min_s, double tau_max_s, int per_decade) {
@@ -310,9 +315,10 @@ std::vector<GaussMarkovBound> gauss_markov_upper_bounds(std::span<const FitPoint
     with_gm.push_back(gm);
     const Solution best = solve(data, with_gm, fit.hadamard, weight_iterations, zero_offset(data));
     const double sigma_best = std::sqrt(std::max(best.c(best.c.size() - 1), 0.0));
-    const double sigma_max =
-        profile_bound(data, columns, fit.hadamard, phi, confidence, weight_iterations,
-                      used_correlation, sigma_best, d0, true, "gauss_markov_upper_bounds");
+    const double sigma_max = profile_bound(
+        data, columns, fit.hadamard, phi, confidence, weight_iterations, used_correlation,
+        ProfileRule{.c_start = sigma_best, .d_ref = d0, .chi_bar = true, .log_search = true},
+        "gauss_markov_upper_bounds");
     if (std::isfinite(sigma_max)) bounds.push_back({tau_c, sigma_max});
   }
   return bounds;
