@@ -12,8 +12,10 @@
 ///
 ///   precision_bound
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <vector>
 
 #include "analysis/deviation_type.h"
@@ -135,34 +137,31 @@ int main() {
     const Eigen::MatrixXd whittle = fisher.inverse();
     std::printf("| %s | %.0f | %.0f | %lld |", c.name, c.rate_hz, c.hours,
                 static_cast<long long>(k));
+    // Median |x| of a normal of sd s is 0.674·s; d(c²)/c² = 2 dc/c. "—" for a term the truth
+    // lacks.
+    const auto print_median_errors = [&](NoiseTerm t,
+                                         std::initializer_list<const Eigen::MatrixXd*> spreads,
+                                         const char* separator) {
+      const auto it = std::find(terms.begin(), terms.end(), t);
+      if (it == terms.end()) {
+        std::printf(" — |");
+        return;
+      }
+      const auto j = static_cast<Eigen::Index>(it - terms.begin());
+      const double c2 = std::pow(coefficient(c.truth, t), 2);
+      const char* sep = " ";
+      for (const Eigen::MatrixXd* v : spreads) {
+        std::printf("%s%.2f %%", sep,
+                    100.0 * 0.674 * std::sqrt(std::max((*v)(j, j), 0.0)) / (2.0 * c2));
+        sep = separator;
+      }
+      std::printf(" |");
+    };
     for (NoiseTerm t :
-         {NoiseTerm::white_noise, NoiseTerm::bias_instability, NoiseTerm::random_walk}) {
-      Eigen::Index j = -1;
-      for (Eigen::Index i = 0; i < p; ++i)
-        if (terms[static_cast<std::size_t>(i)] == t) j = i;
-      if (j < 0) {
-        std::printf(" — |");
-        continue;
-      }
-      const double c2 = std::pow(coefficient(c.truth, t), 2);
-      // Median |x| of a normal of sd s is 0.674·s; d(c²)/c² = 2 dc/c.
-      const auto median_error = [&](const Eigen::MatrixXd& v) {
-        return 100.0 * 0.674 * std::sqrt(std::max(v(j, j), 0.0)) / (2.0 * c2);
-      };
-      std::printf(" %.2f %% / %.2f %% |", median_error(gls), median_error(wls));
-    }
-    for (NoiseTerm t : {NoiseTerm::bias_instability, NoiseTerm::random_walk}) {
-      Eigen::Index j = -1;
-      for (Eigen::Index i = 0; i < p; ++i)
-        if (terms[static_cast<std::size_t>(i)] == t) j = i;
-      if (j < 0) {
-        std::printf(" — |");
-        continue;
-      }
-      const double c2 = std::pow(coefficient(c.truth, t), 2);
-      std::printf(" %.2f %% |",
-                  100.0 * 0.674 * std::sqrt(std::max(whittle(j, j), 0.0)) / (2.0 * c2));
-    }
+         {NoiseTerm::white_noise, NoiseTerm::bias_instability, NoiseTerm::random_walk})
+      print_median_errors(t, {&gls, &wls}, " / ");
+    for (NoiseTerm t : {NoiseTerm::bias_instability, NoiseTerm::random_walk})
+      print_median_errors(t, {&whittle}, "");
     std::printf("\n");
   }
   return 0;
