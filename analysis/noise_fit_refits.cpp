@@ -302,17 +302,19 @@ std::vector<GaussMarkovBound> gauss_markov_upper_bounds(std::span<const FitPoint
   // a GM the selection did not keep, the profile dips below D(0) and the bound moves out.
   const double d0 =
       solve(data, columns, fit.hadamard, weight_iterations, zero_offset(data)).deviance;
+  // The structure and one more GM column, whose T_c each grid point sets.
+  std::vector<Column> with_gm = columns;
+  with_gm.push_back({ColumnKind::gauss_markov, NoiseTerm::white_noise, 0.0, 0.0});
   for (double tau_c : tau_c_grid_s) {
     IMUNOISE_EXPECT(tau_c > 0.0 && std::isfinite(tau_c),
                     "gauss_markov_upper_bounds: a correlation time must be positive");
-    const Column gm{ColumnKind::gauss_markov, NoiseTerm::white_noise, tau_c, 0.0};
+    Column& gm = with_gm.back();
+    gm.tau_c_s = tau_c;
     Eigen::VectorXd phi(n);
     for (Eigen::Index k = 0; k < n; ++k)
       phi(k) = basis(gm, data.tau[static_cast<std::size_t>(k)], fit.hadamard);
     // The GM free (one more NNLS column): its best σ, where the search starts and the
     // correlation's inflation of its direction is taken (the profile's optimum).
-    std::vector<Column> with_gm = columns;
-    with_gm.push_back(gm);
     const Solution best = solve(data, with_gm, fit.hadamard, weight_iterations, zero_offset(data));
     const double sigma_best = std::sqrt(std::max(best.c(best.c.size() - 1), 0.0));
     const double sigma_max = profile_bound(

@@ -7,6 +7,7 @@
 /// the sensor's internal rate (the Kalibr wiki's warning, theory.md §1.4).
 #pragma once
 
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,7 @@ namespace imunoise::pipeline {
 /// The white-noise ratio to the datasheet above which an axis gets the decimation finding:
 /// √2, the smallest decimation without averaging (by 2). An axis within its datasheet's
 /// tolerance (typical values, unit-to-unit spread of 10–30 %) stays well below it.
-inline constexpr double kDecimationWhiteNoiseRatio = 1.4142135623730951;
+inline constexpr double kDecimationWhiteNoiseRatio = std::numbers::sqrt2;
 
 /// The findings of MODEL against SPEC, one line each (data_quality): the axes whose white noise
 /// N, by the lower end of its interval, is at least kDecimationWhiteNoiseRatio × the spec's N
